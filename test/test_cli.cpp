@@ -1,0 +1,87 @@
+// The art2part command line as a user meets it: exit codes, one-line errors, JSON that parses.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <fstream>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+
+#include "art2part/geometry/mesh_io.h"
+#include "test_meshes.h"
+
+using namespace art2part;
+
+namespace {
+
+struct CliRun {
+  int status = -1;
+  std::string out, err;
+};
+
+CliRun run(const std::string& arguments) {
+  const std::string dir = test::tempDir();
+  const std::string command =
+      std::string(ART2PART_CLI) + " " + arguments + " > " + dir + "/out 2> " + dir + "/err";
+  CliRun r;
+  const int raw = std::system(command.c_str());
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  auto slurp = [](const std::string& path) {
+    std::ifstream in(path);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  r.out = slurp(dir + "/out");
+  r.err = slurp(dir + "/err");
+  return r;
+}
+
+const std::string kExample = std::string(ART2PART_SOURCE_DIR) + "/examples/nist_ctc_01_asme1_rd.stp";
+
+}  // namespace
+
+TEST(Cli, InfoJsonDescribesTheExamplePart) {
+  const CliRun r = run("info " + kExample + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["faces"]["total"], 139);
+  EXPECT_EQ(j["faces"]["cylinder"], 57);
+  EXPECT_EQ(j["faces_from"], "brep");
+  EXPECT_TRUE(j["closed"].get<bool>());
+  EXPECT_GT(j["volume_mm3"].get<double>(), 0.0);
+  // SOURCES.md: an 800 x 450 x 150 mm plate.
+  const auto size = j["bounding_box"]["size"];
+  EXPECT_NEAR(size[0].get<double>(), 800.0, 1.0);
+  EXPECT_NEAR(size[1].get<double>(), 450.0, 1.0);
+  EXPECT_NEAR(size[2].get<double>(), 150.0, 1.0);
+}
+
+TEST(Cli, InfoTextNamesRepairsAndWarnings) {
+  const std::string dir = test::tempDir();
+  Mesh open = test::box(Vec3(0, 0, 0), Vec3(10, 10, 10));
+  open.triangles.resize(10);
+  writeBinaryStl(open, dir + "/open.stl");
+  const CliRun r = run("info " + dir + "/open.stl");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("merged duplicate vertices"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("warning:    the mesh is open: 4 boundary edges"), std::string::npos) << r.out;
+}
+
+TEST(Cli, BadInputGivesOneLineAndExitOne) {
+  const std::string dir = test::tempDir();
+  test::writeText(dir + "/junk.stl", "not a mesh at all\n");
+  for (const std::string& file : {dir + "/junk.stl", dir + "/missing.stp", dir}) {
+    const CliRun r = run("info " + file);
+    EXPECT_EQ(r.status, 1) << file;
+    EXPECT_EQ(r.err.rfind("art2part: error: ", 0), 0u) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_TRUE(r.out.empty());
+  }
+}
+
+TEST(Cli, MisuseGivesUsageAndExitTwo) {
+  EXPECT_EQ(run("info").status, 2);
+  EXPECT_EQ(run("info " + kExample + " --no-such-option").status, 2);
+  EXPECT_EQ(run("info " + kExample + " --units furlongs").status, 1);
+  EXPECT_EQ(run("frobnicate").status, 2);
+}
