@@ -1,6 +1,7 @@
 // Repair, orientation, adjacency and checks on meshes whose answers are known exactly.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "art2part/geometry/adjacency.h"
@@ -73,6 +74,31 @@ TEST(Repair, DropsDegenerateAndDuplicateTrianglesKeepingOrder) {
   const std::vector<int> expected = {0, 1, 2, 4, 5, 6, 8, 9, 10, 11, 12, 13};
   EXPECT_EQ(kept, expected);
   EXPECT_TRUE(checkMesh(m).closed);
+}
+
+TEST(Repair, AbsorbsASliverAtATJunctionAndStaysClosed) {
+  // A unit box whose top has a vertex m in the middle of edge 4-5, and the zero-area sliver (4, 5, m) that a CAD
+  // mesher leaves there so the mesh is closed.
+  Mesh m = box(Vec3(0, 0, 0), Vec3(1, 1, 1));
+  m.vertices.emplace_back(0.5, 0, 1);  // vertex 8
+  m.triangles[2] = {4, 8, 7};
+  m.triangles[3] = {8, 5, 7};
+  m.triangles.insert(m.triangles.begin() + 4, Triangle{4, 7, 6});
+  m.triangles.push_back({4, 5, 8});  // the sliver
+  ASSERT_TRUE(checkMesh(m).closed);
+  const int side = 6;  // {0, 5, 4}: the side triangle across the sliver's long edge
+  ASSERT_EQ(m.triangles[side], (Triangle{0, 5, 4}));
+  std::vector<int> kept;
+  const RepairReport r = repairMesh(m, &kept);
+  EXPECT_EQ(r.dropped_degenerate, 1);
+  EXPECT_EQ(r.split_neighbours, 1);
+  const MeshCheck c = checkMesh(m);
+  EXPECT_TRUE(c.closed);
+  EXPECT_TRUE(c.manifold);
+  EXPECT_NEAR(c.volume, 1.0, 1e-12);
+  EXPECT_EQ(m.triangleCount(), 14);
+  EXPECT_EQ(std::count(kept.begin(), kept.end(), side), 2) << "both halves keep the input index";
+  EXPECT_TRUE(std::is_sorted(kept.begin(), kept.end())) << "input order preserved";
 }
 
 TEST(Repair, ReportsAnOpenMesh) {

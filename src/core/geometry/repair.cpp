@@ -231,9 +231,10 @@ RepairReport repairMesh(Mesh& mesh, std::vector<int>* kept_out, const RepairOpti
     report.notes.push_back(formatNote("merged duplicate vertices", report.merged_vertices) + " of " +
                            std::to_string(vertices_before));
   if (report.dropped_degenerate)
-    report.notes.push_back(formatNote("dropped degenerate triangles", report.dropped_degenerate));
-  if (report.split_neighbours)
-    report.notes.push_back(formatNote("split triangles to absorb slivers", report.split_neighbours));
+    report.notes.push_back(formatNote("dropped degenerate triangles", report.dropped_degenerate) +
+                           (report.split_neighbours ? " (" + std::to_string(report.split_neighbours) +
+                                                          " slivers among them, their neighbours split to stay closed)"
+                                                    : std::string()));
   if (report.dropped_duplicate)
     report.notes.push_back(formatNote("dropped duplicate triangles", report.dropped_duplicate));
   if (report.flipped) report.notes.push_back(formatNote("flipped triangles to orient outward", report.flipped));
