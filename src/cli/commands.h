@@ -11,5 +11,6 @@ namespace art2part {
 LoadOptions loadOptionsFrom(const class Arguments& a);  // --units, --tolerance
 int runInfo(const std::vector<std::string>& args);
 int runRender(const std::vector<std::string>& args);
+int runVisibility(const std::vector<std::string>& args);
 
 }  // namespace art2part

@@ -10,7 +10,9 @@ namespace {
 const char* kUsage =
     "usage: art2part COMMAND ...\n"
     "  info PART [--json] [--units mm|in|m] [--tolerance MM]   what the part is: triangles, faces, box, volume\n"
-    "  render PART --out FILE.png [--width W] [--height H] [--units U]   a shaded picture (OSMesa), faces coloured\n";
+    "  render PART --out FILE.png [--width W] [--height H] [--units U]   a shaded picture (OSMesa), faces coloured\n"
+    "  visibility PART --out DIR [--level L] [--sphere tetrahedron|icosahedron] [--backend ray|render]\n              [--no-special] [--no-side] [--resolution PX]\n"
+    "             [--samples N] [--threads N]   visibility cones: DIR/mesh.stl, directions.csv, visibility.bits\n";
 
 }  // namespace
 
@@ -25,6 +27,7 @@ int main(int argc, char** argv) {
   try {
     if (command == "info") return art2part::runInfo(args);
     if (command == "render") return art2part::runRender(args);
+    if (command == "visibility") return art2part::runVisibility(args);
     throw art2part::UsageError("unknown command '" + command + "'");
   } catch (const art2part::UsageError& e) {
     std::cerr << "art2part: " << e.what() << "\n" << kUsage;

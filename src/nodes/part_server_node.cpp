@@ -79,7 +79,13 @@ class PartServer {
       return true;
     }
     res.success = true;
-    res.part = it->second;
+    if (req.summary_only) {
+      res.part.id = it->second.id;
+      res.part.source = it->second.source;
+      res.part.summary = it->second.summary;
+    } else {
+      res.part = it->second;
+    }
     return true;
   }
 

@@ -14,6 +14,9 @@ using Rgb = std::array<float, 3>;  // 0..1
 // concave faces (holes, pockets) darker.
 Rgb surfaceColour(const Face& face);
 
+// A perceptually ordered ramp for a value in 0..1 (dark blue, teal, green, yellow), clamped outside.
+Rgb rampColour(double value);
+
 // One 8-bit colour per triangle of the part, by its face.
 std::vector<std::array<unsigned char, 3>> triangleColoursByFace(const Part& part);
 

@@ -1,5 +1,4 @@
 // Scoring a segmentation against reference faces (the B-rep faces of a STEP file, tessellated).
-#include <Eigen/Geometry>  // cross products (mesh.h brings only Eigen/Core)
 #include <algorithm>
 #include <cmath>
 #include <cstdint>

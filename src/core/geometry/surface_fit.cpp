@@ -7,6 +7,13 @@ namespace art2part {
 
 namespace {
 
+constexpr double kHalfPi = 1.57079632679489661923;
+// Damped Gauss-Newton from a start near the surface converges in a handful of steps; a start that needs more is
+// rarely a surface at all (the callers check the result against their tolerance). A cone starts further off: its
+// axis comes from three close normals.
+constexpr int kMaxCylinderIterations = 15;
+constexpr int kMaxConeIterations = 50;
+
 // Two unit vectors completing a unit axis to a right-handed orthonormal frame.
 void perpendicularBasis(const Vec3& axis, Vec3& u, Vec3& w) {
   const Vec3 helper = std::abs(axis.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
@@ -81,7 +88,100 @@ void centreAxisPoint(const std::vector<Vec3>& points, CylinderSurface& c) {
   c.point += c.axis * c.axis.dot(middle - c.point);
 }
 
+// Signed distance from the cone (positive outside, away from the axis), along the normal of the nearest ruling.
+double signedConeDistance(const ConeSurface& c, const Vec3& p) {
+  const Vec3 d = p - c.apex;
+  const double along = d.dot(c.axis);
+  const double across = (d - along * c.axis).norm();
+  return across * std::cos(c.half_angle) - along * std::sin(c.half_angle);
+}
+
+double sumOfSquaredConeDistances(const std::vector<Vec3>& points, const ConeSurface& cone) {
+  const double cos_a = std::cos(cone.half_angle), sin_a = std::sin(cone.half_angle);
+  double sum = 0.0;
+  for (const Vec3& p : points) {
+    const Vec3 d = p - cone.apex;
+    const double along = d.dot(cone.axis);
+    const double residual = (d - along * cone.axis).norm() * cos_a - along * sin_a;
+    sum += residual * residual;
+  }
+  return sum;
+}
+
+// One damped Gauss-Newton step on apex (3), axis tilt (2, along u and w across the axis) and half angle (1). The
+// residual is across cos(a) - along sin(a); the rows below are its derivatives.
+ConeSurface coneStep(const std::vector<Vec3>& points, const ConeSurface& c, double damping) {
+  Vec3 u, w;
+  perpendicularBasis(c.axis, u, w);
+  const double cos_a = std::cos(c.half_angle), sin_a = std::sin(c.half_angle);
+  Eigen::Matrix<double, 6, 6> normal_matrix = Eigen::Matrix<double, 6, 6>::Zero();
+  Eigen::Matrix<double, 6, 1> gradient = Eigen::Matrix<double, 6, 1>::Zero();
+  for (const Vec3& p : points) {
+    const Vec3 d = p - c.apex;
+    const double along = d.dot(c.axis);
+    const Vec3 radial = d - along * c.axis;
+    const double across = radial.norm();
+    if (across <= 0.0) continue;
+    const Vec3 outwards = radial / across;
+    const Vec3 by_apex = -cos_a * outwards + sin_a * c.axis;
+    Eigen::Matrix<double, 6, 1> row;
+    row << by_apex.x(), by_apex.y(), by_apex.z(),
+        -cos_a * along * outwards.dot(u) - sin_a * d.dot(u),
+        -cos_a * along * outwards.dot(w) - sin_a * d.dot(w),
+        -across * sin_a - along * cos_a;
+    normal_matrix += row * row.transpose();
+    gradient += row * (across * cos_a - along * sin_a);
+  }
+  for (int i = 0; i < 6; ++i) normal_matrix(i, i) *= 1.0 + damping;
+  const Eigen::Matrix<double, 6, 1> step = normal_matrix.ldlt().solve(-gradient);
+  ConeSurface next = c;
+  next.apex = c.apex + step.head<3>();
+  next.axis = (c.axis + step(3) * u + step(4) * w).normalized();
+  next.half_angle = c.half_angle + step(5);
+  return next;
+}
+
 }  // namespace
+
+double distanceToCone(const ConeSurface& cone, const Vec3& p) { return std::abs(signedConeDistance(cone, p)); }
+
+bool nearestPointToLines(const std::vector<Vec3>& points, const std::vector<Vec3>& directions, Vec3& nearest) {
+  Eigen::Matrix3d matrix = Eigen::Matrix3d::Zero();
+  Vec3 rhs = Vec3::Zero();
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Matrix3d across = Eigen::Matrix3d::Identity() - directions[i] * directions[i].transpose();
+    matrix += across;
+    rhs += across * points[i];
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> spectrum(matrix);
+  if (spectrum.eigenvalues()(0) <= 1e-9 * spectrum.eigenvalues()(2)) return false;
+  nearest = matrix.ldlt().solve(rhs);
+  return nearest.allFinite();
+}
+
+bool fitCone(const std::vector<Vec3>& points, const ConeSurface& guess, ConeSurface& cone) {
+  if (points.size() < 6) return false;
+  ConeSurface current = guess;
+  double cost = sumOfSquaredConeDistances(points, current);
+  double damping = 1e-6;
+  for (int iteration = 0; iteration < kMaxConeIterations && cost > 0.0; ++iteration) {
+    const ConeSurface next = coneStep(points, current, damping);
+    const double next_cost = sumOfSquaredConeDistances(points, next);
+    if (!(next_cost < cost) || !(next.half_angle > 0.0) || !(next.half_angle < kHalfPi)) {
+      damping *= 10.0;
+      if (damping > 1e6) break;
+      continue;
+    }
+    const bool converged = cost - next_cost <= 1e-8 * cost;
+    current = next;
+    cost = next_cost;
+    damping = std::max(damping * 0.1, 1e-9);
+    if (converged) break;
+  }
+  if (!(current.half_angle > 0.0 && current.half_angle < kHalfPi) || !current.apex.allFinite()) return false;
+  cone = current;
+  return true;
+}
 
 double distanceToCylinder(const CylinderSurface& cylinder, const Vec3& p) {
   const Vec3 d = p - cylinder.point;
@@ -125,14 +225,19 @@ bool fitCircle(const std::vector<Eigen::Vector2d>& points, Eigen::Vector2d& cent
   return true;
 }
 
+bool fitCylinderAroundAxis(const std::vector<Vec3>& points, const Vec3& axis, CylinderSurface& cylinder) {
+  if (points.size() < 3 || axis.norm() <= 0.0 || !initialCylinder(points, axis.normalized(), cylinder)) return false;
+  centreAxisPoint(points, cylinder);
+  return true;
+}
+
 bool fitCylinder(const std::vector<Vec3>& points, const Vec3& axis_guess, CylinderSurface& cylinder) {
-  if (points.size() < 5 || axis_guess.norm() <= 0.0) return false;
+  if (points.size() < 5) return false;
   CylinderSurface current;
-  if (!initialCylinder(points, axis_guess.normalized(), current)) return false;
-  centreAxisPoint(points, current);
+  if (!fitCylinderAroundAxis(points, axis_guess, current)) return false;
   double cost = sumOfSquaredDistances(points, current);
   double damping = 1e-6;
-  for (int iteration = 0; iteration < 30 && cost > 0.0; ++iteration) {
+  for (int iteration = 0; iteration < kMaxCylinderIterations && cost > 0.0; ++iteration) {
     CylinderSurface next = gaussNewtonStep(points, current, damping);
     centreAxisPoint(points, next);
     const double next_cost = sumOfSquaredDistances(points, next);
@@ -141,7 +246,7 @@ bool fitCylinder(const std::vector<Vec3>& points, const Vec3& axis_guess, Cylind
       if (damping > 1e6) break;
       continue;
     }
-    const bool converged = cost - next_cost <= 1e-12 * cost;
+    const bool converged = cost - next_cost <= 1e-8 * cost;
     current = next;
     cost = next_cost;
     damping = std::max(damping * 0.1, 1e-9);

@@ -17,6 +17,20 @@ Rgb surfaceColour(const Face& face) {
   return c;
 }
 
+Rgb rampColour(double value) {
+  // Stops of a viridis-like ramp; linear in between.
+  static const Rgb stops[5] = {
+      {0.267f, 0.005f, 0.329f}, {0.231f, 0.322f, 0.545f}, {0.129f, 0.569f, 0.549f}, {0.369f, 0.788f, 0.384f},
+      {0.993f, 0.906f, 0.144f}};
+  const double v = value < 0.0 ? 0.0 : (value > 1.0 ? 1.0 : value);
+  const double x = v * 4.0;
+  const int i = x >= 4.0 ? 3 : static_cast<int>(x);
+  const float f = static_cast<float>(x - i);
+  Rgb c;
+  for (int k = 0; k < 3; ++k) c[k] = stops[i][k] + f * (stops[i + 1][k] - stops[i][k]);
+  return c;
+}
+
 std::vector<std::array<unsigned char, 3>> triangleColoursByFace(const Part& part) {
   std::vector<std::array<unsigned char, 3>> colours(part.mesh.triangles.size());
   const Face free_form;

@@ -54,7 +54,7 @@ void main() {
   if (n.z < 0.0) n = -n;
   const vec3 key = normalize(vec3(-0.4, 0.6, 1.0));   // upper left, in front
   const vec3 fill = normalize(vec3(0.7, -0.4, 0.5));  // lower right, weaker
-  float light = 0.25 + 0.65 * max(dot(n, key), 0.0) + 0.2 * max(dot(n, fill), 0.0);
+  float light = 0.3 + 0.6 * max(dot(n, key), 0.0) + 0.25 * max(dot(n, fill), 0.0);
   vec3 shaded = min(base_colour * light, vec3(1.0));
   if (draw_edges) {
     // About one pixel wide, anti-aliased, whatever the triangle's size.

@@ -1,0 +1,51 @@
+// art2part visibility PART --out DIR [--level L] [--sphere tetrahedron|icosahedron] [--backend ray|render] [--no-special] [--no-side]
+//                         [--resolution PX] [--samples N] [--threads N] [--units U] [--tolerance MM]
+#include <chrono>
+#include <iomanip>
+#include <iostream>
+
+#include "arguments.h"
+#include "art2part/visibility/analysis.h"
+#include "commands.h"
+
+namespace art2part {
+
+VisibilityOptions visibilityOptionsFrom(const Arguments& a) {
+  VisibilityOptions options;
+  options.level = a.integer("level", options.level);
+  const std::string sphere = a.value("sphere", "tetrahedron");
+  if (sphere == "icosahedron" || sphere == "ico") options.base = SphereBase::Icosahedron;
+  else if (sphere != "tetrahedron" && sphere != "tetra") throw UsageError("--sphere is tetrahedron or icosahedron");
+  options.backend = parseVisibilityBackend(a.value("backend", visibilityBackendName(options.backend)));
+  options.special_directions = !a.flag("no-special");
+  options.side_correction = !a.flag("no-side");
+  options.render.resolution = a.integer("resolution", 0);
+  options.ray.samples_per_triangle = a.integer("samples", options.ray.samples_per_triangle);
+  options.threads = a.integer("threads", 0);
+  if (options.render.resolution < 0 || options.ray.samples_per_triangle < 1 || options.threads < 0)
+    throw UsageError("--resolution, --samples and --threads must be positive");
+  return options;
+}
+
+int runVisibility(const std::vector<std::string>& args) {
+  const Arguments a(args, {"no-special", "no-side"},
+                    {"out", "level", "sphere", "backend", "resolution", "samples", "threads", "units", "tolerance"});
+  const std::string path = a.requirePositional(1, "one part file: art2part visibility PART --out DIR");
+  if (!a.has("out")) throw UsageError("visibility needs --out DIR");
+  const VisibilityOptions options = visibilityOptionsFrom(a);
+  const Part part = loadPart(path, loadOptionsFrom(a));
+  const VisibilityResult r = analyseVisibility(part, options);
+  writeVisibilityFiles(part, r, a.value("out"));
+  const double pairs = static_cast<double>(r.map.triangles()) * r.map.directions();
+  std::cout << std::fixed << std::setprecision(3) << "triangles:   " << r.map.triangles() << "\n"
+            << "directions:  " << r.map.directions() << " (level " << options.level << ", " << r.special_directions
+            << " special)\n"
+            << "backend:     " << visibilityBackendName(options.backend) << ", " << r.seconds_visibility << " s, "
+            << std::setprecision(0) << pairs / std::max(r.seconds_visibility, 1e-9) << " pairs/s\n"
+            << "side pairs:  " << r.side_pairs_added << " added by side correction\n"
+            << "unseen:      " << r.unseen_triangles.size() << " triangles visible along no direction\n"
+            << "wrote:       " << a.value("out") << "/{mesh.stl,directions.csv,visibility.bits}\n";
+  return 0;
+}
+
+}  // namespace art2part
