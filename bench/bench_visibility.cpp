@@ -1,6 +1,6 @@
 // Visibility benchmarks (issue 3): speed of both backends beside the naive 1024 x 1024 OSMesa loop, linear scaling
 // in triangles and directions, and the agreement of the backends on every shared part.
-//   bench_visibility [speed|scaling|accuracy|all]   (default all)
+//   bench_visibility [speed|scaling|accuracy [PART [LEVEL]]|all]   (default all; PART a file name in shared/parts)
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -72,7 +72,7 @@ void scaling() {
   }
 }
 
-void accuracy() {
+void accuracy(const std::string& only, int level) {
   std::printf("accuracy: ray vs render at level 4 with special directions, no side correction; pairs within 2 deg of "
               "grazing left out; lost = seen by a dense ray reference (16 samples) from some direction, by the "
               "backend from none\n");
@@ -81,8 +81,10 @@ void accuracy() {
                          "nist_ctc_02_asme1_rc_fine_tess.stl"};
   const double grazing = std::sin(2.0 * kPi / 180.0);
   for (const char* name : parts) {
+    if (!only.empty() && only != name) continue;
     const Part part = loadPart(kParts + "/" + name);
     VisibilityOptions options;
+    options.level = level;
     options.side_correction = false;
     const VisibilityResult ray = analyseVisibility(part, options);
     options.backend = VisibilityBackend::Render;
@@ -121,7 +123,7 @@ int main(int argc, char** argv) {
   try {
     if (what == "speed" || what == "all") speed();
     if (what == "scaling" || what == "all") scaling();
-    if (what == "accuracy" || what == "all") accuracy();
+    if (what == "accuracy" || what == "all") accuracy(argc > 2 ? argv[2] : "", argc > 3 ? std::stoi(argv[3]) : 4);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_visibility: %s\n", e.what());
     return 1;

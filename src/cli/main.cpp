@@ -11,7 +11,7 @@ const char* kUsage =
     "usage: art2part COMMAND ...\n"
     "  info PART [--json] [--units mm|in|m] [--tolerance MM]   what the part is: triangles, faces, box, volume\n"
     "  render PART --out FILE.png [--width W] [--height H] [--units U]   a shaded picture (OSMesa), faces coloured\n"
-    "  visibility PART --out DIR [--level L] [--sphere tetrahedron|icosahedron] [--backend ray|render]\n              [--no-special] [--no-side] [--resolution PX]\n"
+    "  visibility PART --out DIR [--picture CONES.png] [--level L] [--sphere tetrahedron|icosahedron] [--backend ray|render]\n              [--no-special] [--no-side] [--resolution PX]\n"
     "             [--samples N] [--threads N]   visibility cones: DIR/mesh.stl, directions.csv, visibility.bits\n";
 
 }  // namespace

@@ -1,11 +1,14 @@
-// art2part visibility PART --out DIR [--level L] [--sphere tetrahedron|icosahedron] [--backend ray|render] [--no-special] [--no-side]
+// art2part visibility PART --out DIR [--picture FILE.png] [--level L] [--sphere tetrahedron|icosahedron] [--backend ray|render] [--no-special] [--no-side]
 //                         [--resolution PX] [--samples N] [--threads N] [--units U] [--tolerance MM]
 #include <chrono>
 #include <iomanip>
 #include <iostream>
 
 #include "arguments.h"
+#include "art2part/render/palette.h"
+#include "art2part/render/picture.h"
 #include "art2part/visibility/analysis.h"
+#include "art2part/visibility/cones.h"
 #include "commands.h"
 
 namespace art2part {
@@ -27,15 +30,34 @@ VisibilityOptions visibilityOptionsFrom(const Arguments& a) {
   return options;
 }
 
+namespace {
+
+// The part coloured by the solid angle of each triangle's cone: dark where hardly any direction reaches, yellow for a
+// whole hemisphere, red where none does.
+void writeConePicture(const Part& part, const VisibilityResult& r, const std::string& path) {
+  constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
+  const std::vector<double> angles = coneSolidAngles(r.map, r.directions);
+  PictureOptions picture;
+  for (double a : angles) {
+    const Rgb c = a <= 0.0 ? Rgb{0.9f, 0.1f, 0.1f} : rampColour(a / kTwoPi);
+    picture.triangle_colours.push_back({static_cast<unsigned char>(255 * c[0]), static_cast<unsigned char>(255 * c[1]),
+                                        static_cast<unsigned char>(255 * c[2])});
+  }
+  writePng(renderPicture(part.mesh, picture), path);
+}
+
+}  // namespace
+
 int runVisibility(const std::vector<std::string>& args) {
   const Arguments a(args, {"no-special", "no-side"},
-                    {"out", "level", "sphere", "backend", "resolution", "samples", "threads", "units", "tolerance"});
+                    {"out", "picture", "level", "sphere", "backend", "resolution", "samples", "threads", "units", "tolerance"});
   const std::string path = a.requirePositional(1, "one part file: art2part visibility PART --out DIR");
   if (!a.has("out")) throw UsageError("visibility needs --out DIR");
   const VisibilityOptions options = visibilityOptionsFrom(a);
   const Part part = loadPart(path, loadOptionsFrom(a));
   const VisibilityResult r = analyseVisibility(part, options);
   writeVisibilityFiles(part, r, a.value("out"));
+  if (a.has("picture")) writeConePicture(part, r, a.value("picture"));
   const double pairs = static_cast<double>(r.map.triangles()) * r.map.directions();
   std::cout << std::fixed << std::setprecision(3) << "triangles:   " << r.map.triangles() << "\n"
             << "directions:  " << r.map.directions() << " (level " << options.level << ", " << r.special_directions

@@ -75,7 +75,7 @@ class PartServer {
     auto it = parts_.find(id);
     if (it == parts_.end()) {
       res.success = false;
-      res.message = parts_.empty() ? "no part loaded" : "no part with id '" + id + "'";
+      res.message = "no part with id '" + id + "'" + (parts_.empty() ? " (no part loaded yet)" : "");
       return true;
     }
     res.success = true;

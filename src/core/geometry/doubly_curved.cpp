@@ -62,26 +62,33 @@ bool fitSphere(const std::vector<Vec3>& points, double tolerance, Vec3& centre, 
 // a.(p x n) + n.(c x a) = 0, linear in (a, c x a): the solution is the eigenvector of least eigenvalue.
 bool axisOfRevolution(const Mesh& mesh, const std::vector<int>& triangles, const Vec3& origin, Vec3& axis,
                       Vec3& point) {
+  // Positions in units of their spread, so that both halves of the unknown weigh alike.
+  double scale = 0.0;
+  for (int t : triangles) scale = std::max(scale, (triangleCentroid(mesh, t) - origin).norm());
+  if (!(scale > 0.0)) return false;
   Eigen::Matrix<double, 6, 6> scatter = Eigen::Matrix<double, 6, 6>::Zero();
   for (int t : triangles) {
-    const Vec3 p = triangleCentroid(mesh, t) - origin, n = triangleNormal(mesh, t);
+    const Vec3 p = (triangleCentroid(mesh, t) - origin) / scale, n = triangleNormal(mesh, t);
     Eigen::Matrix<double, 6, 1> row;
     row << p.cross(n), n;
     scatter += triangleArea(mesh, t) * row * row.transpose();
   }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> spectrum(scatter);
-  if (spectrum.eigenvalues()(1) <= kMinSpreadRatio * spectrum.eigenvalues()(5)) return false;  // no single axis
-  const Eigen::Matrix<double, 6, 1> x = spectrum.eigenvectors().col(0);
+  // A singular value decomposition of the symmetric scatter: its eigenvectors, least last (and no gcc warnings, which
+  // the 6x6 self-adjoint solver raises).
+  const Eigen::JacobiSVD<Eigen::Matrix<double, 6, 6>> spectrum(scatter, Eigen::ComputeFullV);
+  const auto& values = spectrum.singularValues();
+  if (values(4) <= kMinSpreadRatio * values(0)) return false;  // no single axis (a sphere, a cylinder)
+  const Eigen::Matrix<double, 6, 1> x = spectrum.matrixV().col(5);
   const double length = x.head<3>().norm();
   if (!(length > 0.0)) return false;
   axis = x.head<3>() / length;
-  const Vec3 moment = x.tail<3>() / length;  // c x a
-  point = origin + axis.cross(moment);
+  const Vec3 moment = x.tail<3>() / length;  // c x a, c in units of the spread
+  point = origin + scale * axis.cross(moment);
   return axis.allFinite() && point.allFinite();
 }
 
 struct Torus {
-  Vec3 axis, centre;
+  Vec3 axis = Vec3::UnitZ(), centre = Vec3::Zero();
   double major = 0.0, minor = 0.0;
 };
 
@@ -110,9 +117,9 @@ bool fitTorus(const Mesh& mesh, const std::vector<int>& triangles, const std::ve
   if (!fitCircle(meridian, centre, minor)) return false;
   torus = Torus{axis, point + centre.y() * axis, centre.x(), minor};
   if (!(torus.major > 0.0) || torus.major > tol.max_radius) return false;
-  for (const Vec3& p : points)
-    if (torusDistance(torus, p) > tol.distance) return false;
-  return true;
+  double worst = 0.0;
+  for (const Vec3& p : points) worst = std::max(worst, torusDistance(torus, p));
+  return worst <= tol.distance;
 }
 
 // Centre of the tube circle nearest each triangle: where its normal points from or to.

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "art2part/geometry/adjacency.h"
+#include "art2part/geometry/face.h"
 #include "art2part/geometry/mesh.h"
 #include "art2part/geometry/surface_fit.h"
 
