@@ -2,10 +2,13 @@
 //  1. planar patches: region growing over manifold edges, each triangle joining the patch whose plane holds its
 //     corners and whose normal it shares;
 //  2. cylinders and cones (ruled_surfaces.cpp): a tessellation cuts them into planar strips between rulings, so they
-//     are grown over patches from seeds of three such strips, every patch checked against the fitted surface;
+//     are grown over patches from seeds of three such strips (or a whole fan round a cone's apex, cone_fans.cpp),
+//     every patch checked against the fitted surface; short cylinders that are pieces of an extruded free-form
+//     profile are dropped again (extruded_profiles.cpp);
 //  3. what is left: a planar patch is a plane unless it is one of a chain of small facets bending gently into each
 //     other (a torus, a sphere, a fillet with too few strips, free-form); the facets of such chains are grouped into
-//     free-form ("other") segments, split at sharp edges.
+//     free-form ("other") segments, split at sharp edges, and those that fit a sphere or a torus become one
+//     (doubly_curved.cpp).
 #include "art2part/geometry/segmentation.h"
 
 #include <algorithm>
