@@ -22,19 +22,33 @@ struct RenderVisibilityOptions {
   double pixels_per_triangle = 50; // the thesis's figure: the median triangle covers about this many pixels
   int max_resolution = 2048;
   int threads = 0;                // 0 = hardware threads; one OSMesa context per thread
+  // Also mark triangles whose edges or corners show though they win no pixel centre (slivers, sub-pixel triangles,
+  // thin visible strips): two more passes over the mesh per view.
+  bool outlines = true;
 };
 
 // Orthographic views along each direction into an R32UI target (gl_PrimitiveID + 1), read back, every id seen
-// marks its triangle visible. Front-facing triangles only count; every triangle occludes.
+// marks its triangle visible, and so does (with outlines) an edge or corner that shows. Front-facing triangles only
+// count; every triangle occludes.
 VisibilityMap renderVisibility(const Mesh& mesh, const std::vector<Vec3>& directions,
                                const RenderVisibilityOptions& options = {}, const Progress& progress = {});
 
 struct RayVisibilityOptions {
   int samples_per_triangle = 4;   // the centroid and points towards each corner
   int threads = 0;
+  // A triangle whose samples are all hidden but whose neighbour across an edge is visible often shows a strip along
+  // that edge: rays from points just inside the shared edge find it (repeated while it finds more). Off, the answer
+  // is the plain sample model; analyseVisibility() turns it on (see withEdgeRefinement()).
+  bool refine_edges = false;
 };
 
-// Ray casting (Embree): rays from sample points of each front-facing triangle along d; visible when one escapes.
+inline RayVisibilityOptions withEdgeRefinement(RayVisibilityOptions options = {}) {
+  options.refine_edges = true;
+  return options;
+}
+
+// Ray casting (Embree): rays from sample points of each front-facing triangle along d; visible when one escapes
+// (with refine_edges, also rays from points near edges shared with a visible neighbour).
 VisibilityMap rayVisibility(const Mesh& mesh, const std::vector<Vec3>& directions,
                             const RayVisibilityOptions& options = {}, const Progress& progress = {});
 

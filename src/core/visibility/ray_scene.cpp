@@ -22,6 +22,10 @@ constexpr double kSampleWeights[kMaxSamples][3] = {
 // (An offset along d instead would lift the origin by only eps * (n . d), nothing for grazing directions.)
 constexpr double kLiftFraction = 1e-6;
 
+// Edge samples sit this fraction of the way from the edge towards the opposite corner: inside the triangle, so their
+// rays do not graze the neighbour across the edge, yet close enough to see what the neighbour sees.
+constexpr double kEdgeInset = 0.01;
+
 // The walk accepts a triangle only when the ray passes this far (in barycentric terms) inside it; rays near an edge
 // go to Embree, whose watertight test settles them.
 constexpr double kInsideMargin = 1e-6;
@@ -113,6 +117,9 @@ Prepared prepare(const Mesh& mesh, int samples) {
   p.triangle.resize(n);
   std::iota(p.triangle.begin(), p.triangle.end(), 0);
   std::stable_sort(p.triangle.begin(), p.triangle.end(), [&](int a, int b) { return code[a] < code[b]; });
+  p.position.resize(n);
+  for (int i = 0; i < n; ++i) p.position[p.triangle[i]] = i;
+  p.lift = lift;
 
   p.nx.resize(n);
   p.ny.resize(n);
@@ -132,6 +139,16 @@ Prepared prepare(const Mesh& mesh, int samples) {
     }
   }
   return p;
+}
+
+Float3 edgeSample(const Prepared& p, int t, int k, double along) {
+  const WalkTriangle& triangle = p.walk[t];
+  const Vec3 a = toVec(triangle.corner[k]), b = toVec(triangle.corner[(k + 1) % 3]);
+  const Vec3 opposite = toVec(triangle.corner[(k + 2) % 3]);
+  const int i = p.position[t];
+  const Vec3 normal(p.nx[i], p.ny[i], p.nz[i]);
+  const Vec3 o = (1 - kEdgeInset) * (a + along * (b - a)) + kEdgeInset * opposite + p.lift * normal;
+  return {float(o.x()), float(o.y()), float(o.z())};
 }
 
 int walkToHit(const Prepared& p, const Float3& origin, const Vec3& d, int t) {

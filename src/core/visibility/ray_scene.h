@@ -32,6 +32,8 @@ struct Prepared {
   std::vector<Triangle> corners;             // by triangle index, as in the mesh
   std::vector<WalkTriangle> walk;            // by triangle index
   std::vector<int> triangle;                 // triangle index at each position
+  std::vector<int> position;                 // position of each triangle index
+  double lift = 0;                           // of every ray origin off its triangle, along the normal
   std::vector<double> nx, ny, nz;            // unit outward normals by position (zero when degenerate)
   std::vector<std::vector<Float3>> origins;  // origins[s][i]: sample s by position, relative to the centre, lifted
 
@@ -40,6 +42,10 @@ struct Prepared {
 
 // samples: 1..kMaxSamples.
 Prepared prepare(const Mesh& mesh, int samples);
+
+// A ray origin just inside edge k (corners k, k + 1) of triangle t, a fraction `along` of the way from corner k, lifted
+// like the samples.
+Float3 edgeSample(const Prepared& p, int t, int k, double along);
 
 // Follows the ray over the surface from triangle t, crossing to the neighbour beyond whichever edge the ray passes
 // outside of, and returns a triangle the ray clearly passes through in front of its origin, or -1 when the walk

@@ -11,6 +11,12 @@
 // to Embree only when the walk finds no triangle it clearly passes through. A hit found by the walk is a real hit,
 // so the answer is exactly the ray-casting one, only cheaper. (Remembering occluders from one direction to the next
 // was tried too: the walks got long and cost more than the rays they saved.)
+//
+// A few interior samples miss a triangle that is only partly visible when its visible part holds none of them: a
+// strip along the rim of a pocket, a face half under an overhang. The visible part of a triangle almost always
+// touches one of its edges, and the neighbour across that edge is then usually visible too. So with refine_edges,
+// triangles still hidden next to a visible neighbour shoot a few more rays from just inside the shared edge, round
+// after round while that finds more (a visible strip can cross several thin triangles).
 #include <embree3/rtcore.h>
 
 #include <algorithm>
@@ -39,6 +45,15 @@ using raycast::Prepared;
 // Rays traced at a time: few enough to stay in the core's cache (48 kB), many enough for Embree's streams.
 constexpr std::size_t kBlock = 1024;
 
+// Edge refinement: where along a shared edge the extra rays start (fractions from its first corner), and how many
+// rounds of spreading from newly visible triangles to their neighbours at most.
+constexpr double kEdgeSamples[] = {0.5, 0.12, 0.88};
+constexpr int kEdgeSampleCount = 3;
+constexpr int kRefineRounds = 12;
+
+// The id of a ray whose occluder is not worth recording: beyond every position, so the filter skips it.
+constexpr int kNoOccluder = -1;
+
 // Directions are meant to be unit; normalising keeps n . d and the rays honest if not. A unit direction is used as
 // given: renormalising would move its last bits and flip the sign of n . d for faces it runs along.
 Vec3 unit(const Vec3& d) {
@@ -51,7 +66,8 @@ Vec3 unit(const Vec3& d) {
 // position's last occluded ray (-1: none yet).
 class Tracer {
  public:
-  Tracer(RTCScene scene, const Prepared& p) : scene_(scene), p_(p), occluder_(p.size(), -1) {}
+  Tracer(RTCScene scene, const Prepared& p, bool refine)
+      : scene_(scene), p_(p), refine_(refine), occluder_(p.size(), -1), seen_(refine ? p.size() : 0, -1) {}
 
   // Positions of the triangles visible along unit direction d.
   const std::vector<int>& visibleAlong(const Vec3& d) {
@@ -61,10 +77,63 @@ class Tracer {
     for (int i = 0; i < p_.size(); ++i)
       if (p_.nx[i] * dx + p_.ny[i] * dy + p_.nz[i] * dz > 0.0) pending_.push_back(i);
     for (int s = 0; s < p_.samples && !pending_.empty(); ++s) samplePass(s, d);
+    if (refine_) refineEdges(d);
     return visible_;
   }
 
  private:
+  // Rounds of edge samples for the hidden triangles beside visible ones; seen_ marks by position the triangles
+  // visible along this direction (stamped with a per-direction number, so it never needs clearing).
+  void refineEdges(const Vec3& d) {
+    ++stamp_;
+    std::size_t marked = 0;
+    for (int round = 0; round < kRefineRounds && !pending_.empty(); ++round) {
+      for (; marked < visible_.size(); ++marked) seen_[visible_[marked]] = stamp_;
+      if (!edgePass(d)) break;
+    }
+  }
+
+  // One round: rays from near every edge a pending triangle shares with a visible one. Returns whether any escaped;
+  // pending_ keeps the rest.
+  bool edgePass(const Vec3& d) {
+    const std::size_t before = visible_.size();
+    rays_.clear();
+    owners_.clear();
+    for (int i : pending_) {
+      const int t = p_.triangle[i];
+      for (int k = 0; k < 3; ++k) {
+        const int across = p_.walk[t].across[k];
+        if (across < 0 || seen_[p_.position[across]] != stamp_) continue;
+        if (rays_.size() + kEdgeSampleCount > kBlock) traceEdgeRays();
+        for (double along : kEdgeSamples) {
+          addRay(raycast::edgeSample(p_, t, k, along), d, kNoOccluder);
+          owners_.push_back(i);
+        }
+      }
+    }
+    traceEdgeRays();
+    if (visible_.size() == before) return false;
+    hidden_.clear();
+    for (int i : pending_)
+      if (seen_[i] != stamp_) hidden_.push_back(i);
+    pending_.swap(hidden_);
+    return true;
+  }
+
+  // Traces the edge rays gathered so far; each owner with a ray that escaped becomes visible (once).
+  void traceEdgeRays() {
+    trace();
+    for (std::size_t r = 0; r < rays_.size(); ++r) {
+      const int i = owners_[r];
+      if (rays_[r].tfar >= 0.0f && seen_[i] != stamp_) {
+        seen_[i] = stamp_;
+        visible_.push_back(i);
+      }
+    }
+    rays_.clear();
+    owners_.clear();
+  }
+
   // One ray per pending triangle from sample s. Afterwards pending_ holds those still hidden, in position order.
   void samplePass(int s, const Vec3& d) {
     hidden_.clear();
@@ -127,10 +196,13 @@ class Tracer {
 
   RTCScene scene_;
   const Prepared& p_;
+  const bool refine_;
   std::vector<int> occluder_;
   std::vector<int> pending_, hidden_, visible_;
   std::array<char, kBlock> walked_;  // whether the walk settled each triangle of the block
   std::vector<RTCRay> rays_;
+  std::vector<int> seen_, owners_;  // edge refinement: visible stamps by position; the position of each edge ray
+  int stamp_ = 0;
 };
 
 // Hands directions to the tracing threads one at a time and merges their results. Bits of different directions
@@ -138,8 +210,8 @@ class Tracer {
 // several of tracing).
 class Job {
  public:
-  Job(RTCScene scene, const Prepared& prepared, const std::vector<Vec3>& directions, BitMatrix& bits)
-      : scene_(scene), prepared_(prepared), directions_(directions), bits_(bits) {}
+  Job(RTCScene scene, const Prepared& prepared, bool refine, const std::vector<Vec3>& directions, BitMatrix& bits)
+      : scene_(scene), prepared_(prepared), refine_(refine), directions_(directions), bits_(bits) {}
 
   void run(int threads, const Progress& progress) {
     std::vector<std::thread> pool;
@@ -179,7 +251,7 @@ class Job {
 
   void work() {
     try {
-      Tracer tracer(scene_, prepared_);
+      Tracer tracer(scene_, prepared_, refine_);
       for (int d = next_++; d < static_cast<int>(directions_.size()) && !stop_; d = next_++)
         record(d, tracer.visibleAlong(unit(directions_[d])));
     } catch (...) {
@@ -199,6 +271,7 @@ class Job {
 
   RTCScene scene_;
   const Prepared& prepared_;
+  const bool refine_;
   const std::vector<Vec3>& directions_;
   BitMatrix& bits_;
   std::atomic<int> next_{0};
@@ -228,7 +301,7 @@ VisibilityMap rayVisibility(const Mesh& mesh, const std::vector<Vec3>& direction
   // 7 is every sample point defined.
   const Prepared prepared = raycast::prepare(mesh, std::clamp(options.samples_per_triangle, 1, raycast::kMaxSamples));
   const raycast::EmbreeScene scene(prepared);
-  Job job(scene.scene(), prepared, directions, map.bits);
+  Job job(scene.scene(), prepared, options.refine_edges, directions, map.bits);
   job.run(threadCount(options.threads, static_cast<int>(directions.size())), progress);
   if (progress) progress(1.0);
   return map;

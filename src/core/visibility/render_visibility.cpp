@@ -2,10 +2,16 @@
 // holding gl_PrimitiveID + 1, read back; every id seen marks its triangle visible along that direction.
 // Worker threads each own an OSMesa context with the mesh uploaded once and claim directions one at a time.
 // Cost is per triangle per view (llvmpipe's triangle setup) plus pixels: about 50-130 ms of CPU per view for 120k
-// triangles at 512-2048 pixels, half that when back faces can be culled. A triangle that covers no pixel centre
-// in a view is missed there, so a coarse resolution loses visibility of small triangles.
+// triangles at 512-2048 pixels, half that when back faces can be culled.
+//
+// A triangle that covers no pixel centre never wins a pixel: thin CAD fan triangles, triangles smaller than a pixel,
+// a strip of a triangle peeking out from under an occluder. With outlines on, one more pass draws every
+// front-facing triangle's outline, drawn just inside it, against the finished depth buffer, every fragment that
+// passes marking its triangle in a storage buffer. Unlike ids in pixels, marks never overwrite each
+// other, so a sliver between two neighbours that share all its pixels is still seen.
 #include "art2part/render/offscreen_context.h"  // first: GL prototypes
 #include "art2part/visibility/visibility.h"
+#include "render_scene.h"
 
 #include <algorithm>
 #include <atomic>
@@ -23,6 +29,9 @@
 namespace art2part {
 
 namespace {
+
+using idrender::Scene;
+using idrender::View;
 
 // Positions arrive relative to the bounding-sphere centre; `view` rotates them into the eye frame (right, up,
 // back) and divides by the radius, so the sphere fills the clip cube exactly in x, y and depth: the depth range
@@ -43,137 +52,72 @@ layout(location = 0) out uint id;
 void main() { id = gl_FrontFacing ? uint(gl_PrimitiveID + 1) : 0u; }
 )";
 
-// Everything the views share, computed once on the CPU and read by every worker.
-struct Scene {
-  std::vector<float> positions;  // xyz per vertex, relative to `centre`
-  std::vector<GLuint> indices;   // three per triangle, in triangle order: gl_PrimitiveID == triangle index
-  std::vector<Vec3> normals;     // unit, for the exact n.d > 0 test in double
-  std::vector<Vec3> corners;     // of the bounding box, relative to `centre`: where the part can appear in a view
-  double radius = 1;             // bounding sphere about the box centre, slightly enlarged
-  int resolution = 64;
-  bool cull = false;             // back faces can be skipped: see backFacesNeverShow()
-};
-
-double medianArea(const Mesh& mesh) {
-  std::vector<double> areas(mesh.triangles.size());
-  for (int t = 0; t < mesh.triangleCount(); ++t) areas[t] = triangleArea(mesh, t);
-  if (areas.empty()) return 0;
-  auto middle = areas.begin() + areas.size() / 2;
-  std::nth_element(areas.begin(), middle, areas.end());
-  return *middle;
-}
-
-// The thesis sizes views so that a typical triangle covers about 50 pixels (3.2.6). A view's side spans the
-// bounding-sphere diameter 2R at N pixels, so a pixel is (2R/N)^2 and the median triangle, seen square-on (its
-// true area A, its best case), covers A N^2 / 4R^2 pixels: N = 2R sqrt(ppt / A), clamped to [64, max_resolution].
-// Triangles seen obliquely cover less: ones smaller than a pixel may fall between pixel centres and be missed.
-int chooseResolution(const Mesh& mesh, double radius, const RenderVisibilityOptions& options) {
-  if (options.resolution > 0) return options.resolution;
-  const int max_resolution = std::max(64, options.max_resolution);
-  const double area = medianArea(mesh);
-  if (!(area > 0)) return max_resolution;
-  const double n = std::ceil(2 * radius * std::sqrt(std::max(options.pixels_per_triangle, 0.0) / area));
-  return static_cast<int>(std::clamp(n, 64.0, double(max_resolution)));
-}
-
-// Culling back faces gives the same pixels as drawing them when the surface is closed and oriented outwards: a
-// line of sight from outside first meets the part where it enters it, on a front face, so a back face is never
-// the nearest surface. It holds when every directed edge (a, b) is matched by exactly one (b, a) and every
-// edge-connected shell encloses a positive volume. Anything else (an open mesh, an inside-out shell, a void)
-// draws back faces too. Culling skips rasterising about half the triangles: a third less time per view.
-bool backFacesNeverShow(const Mesh& mesh) {
-  const int count = mesh.triangleCount();
-  std::vector<std::pair<std::uint64_t, int>> edges;  // (a << 32 | b, triangle), sorted
-  edges.reserve(3 * std::size_t(count));
-  auto key = [](int a, int b) { return std::uint64_t(std::uint32_t(a)) << 32 | std::uint32_t(b); };
-  for (int t = 0; t < count; ++t)
-    for (int k = 0; k < 3; ++k) edges.emplace_back(key(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3]), t);
-  std::sort(edges.begin(), edges.end());
-  std::vector<int> shell(count);  // union-find over triangles sharing an edge
-  for (int t = 0; t < count; ++t) shell[t] = t;
-  auto find = [&](int t) {
-    while (shell[t] != t) t = shell[t] = shell[shell[t]];
-    return t;
-  };
-  for (std::size_t i = 0; i < edges.size(); ++i) {
-    const std::uint64_t e = edges[i].first, reverse = e << 32 | e >> 32;
-    if (i > 0 && edges[i - 1].first == e) return false;  // an edge run twice the same way
-    auto twin = std::lower_bound(edges.begin(), edges.end(), std::make_pair(reverse, -1));
-    if (twin == edges.end() || twin->first != reverse) return false;  // a boundary edge
-    shell[find(edges[i].second)] = find(twin->second);
+// The outline pass draws each front-facing triangle's outline moved inwards by kInset pixels (a triangle thinner
+// than that shrinks by half about its incentre instead). Inwards, because an outline tested at the pixel centre next
+// to it would otherwise see past an occluder whose silhouette runs along the edge (a slot's floor under a ceiling
+// with the same outline). Its depth is pulled towards the eye by the triangle's depth change over kInset pixels, so
+// it beats its own fill at the nearest pixel centre and no nearer geometry.
+const char* kOutlineGeometryShader = R"(#version 450 core
+layout(triangles) in;
+layout(line_strip, max_vertices = 4) out;
+uniform float pixel;  // the width of a pixel in clip units
+uniform float inset;  // in pixels
+flat out int triangle;
+void main() {
+  vec3 p[3] = vec3[3](gl_in[0].gl_Position.xyz, gl_in[1].gl_Position.xyz, gl_in[2].gl_Position.xyz);
+  vec2 e1 = p[1].xy - p[0].xy, e2 = p[2].xy - p[0].xy;
+  float area2 = e1.x * e2.y - e1.y * e2.x;  // twice the signed area: counter-clockwise is front-facing
+  if (!(area2 > 0.0)) return;
+  float a = length(p[1].xy - p[2].xy), b = length(p[2].xy - p[0].xy), c = length(e1);
+  vec3 centre = (a * p[0] + b * p[1] + c * p[2]) / (a + b + c);
+  float radius = area2 / (a + b + c);  // inradius
+  float keep = radius > inset * pixel ? 1.0 - inset * pixel / radius : 0.5;
+  float dzx = (e2.y * (p[1].z - p[0].z) - e1.y * (p[2].z - p[0].z)) / area2;
+  float dzy = (e1.x * (p[2].z - p[0].z) - e2.x * (p[1].z - p[0].z)) / area2;
+  float pull = min((abs(dzx) + abs(dzy)) * inset * pixel, 8.0 * pixel) + 1e-6;
+  for (int k = 0; k < 4; ++k) {
+    vec3 q = centre + keep * (p[k % 3] - centre);
+    gl_Position = vec4(q.xy, q.z - pull, 1.0);
+    triangle = gl_PrimitiveIDIn;
+    EmitVertex();
   }
-  std::vector<double> volume(count, 0.0);  // six times each shell's signed volume, about the first vertex
-  const Vec3 origin = mesh.vertices[mesh.triangles[0][0]];
-  for (int t = 0; t < count; ++t) {
-    const Vec3 a = mesh.corner(t, 0) - origin, b = mesh.corner(t, 1) - origin, c = mesh.corner(t, 2) - origin;
-    volume[find(t)] += a.dot(b.cross(c));
+  EndPrimitive();
+}
+)";
+
+// Early depth tests, so that a fragment hidden by the depth buffer leaves no mark (a shader with side effects
+// would otherwise run before the test).
+const char* kMarkShader = R"(#version 450 core
+layout(early_fragment_tests) in;
+layout(std430, binding = 0) writeonly buffer Marks { uint marks[]; };
+uniform uint stamp;
+flat in int triangle;
+void main() { marks[triangle] = stamp; }
+)";
+
+// linkProgram() of offscreen_context.h takes no geometry shader: vertex, geometry and fragment linked here.
+GLuint linkOutlineProgram() {
+  const char* name = "visibility outlines";
+  const GLuint shaders[3] = {compileShader(GL_VERTEX_SHADER, kVertexShader, name),
+                             compileShader(GL_GEOMETRY_SHADER, kOutlineGeometryShader, name),
+                             compileShader(GL_FRAGMENT_SHADER, kMarkShader, name)};
+  const GLuint program = glCreateProgram();
+  for (GLuint shader : shaders) glAttachShader(program, shader);
+  glLinkProgram(program);
+  for (GLuint shader : shaders) glDeleteShader(shader);  // the program keeps the compiled code
+  GLint ok = GL_FALSE;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    glDeleteProgram(program);
+    throw std::runtime_error(std::string("linking shader program ") + name);
   }
-  for (int t = 0; t < count; ++t)
-    if (find(t) == t && !(volume[t] > 0)) return false;
-  return true;
+  return program;
 }
 
-Scene prepareScene(const Mesh& mesh, const RenderVisibilityOptions& options) {
-  Scene scene;
-  const Box box = boundingBox(mesh);
-  const Vec3 centre = box.center();
-  for (int i = 0; i < 8; ++i)
-    scene.corners.emplace_back(Vec3(i & 1 ? box.max.x() : box.min.x(), i & 2 ? box.max.y() : box.min.y(),
-                                    i & 4 ? box.max.z() : box.min.z()) - centre);
-  double radius = 0;
-  for (const Triangle& t : mesh.triangles)
-    for (int v : t) {
-      if (v < 0 || v >= static_cast<int>(mesh.vertices.size()))
-        throw std::invalid_argument("renderVisibility: triangle refers to a missing vertex");
-      radius = std::max(radius, (mesh.vertices[v] - centre).norm());
-    }
-  // A small margin keeps corners on the sphere off the clip planes, where float rounding could cut them.
-  scene.radius = std::max(radius, 1e-9) * 1.001;
-  scene.positions.reserve(3 * mesh.vertices.size());
-  for (const Vec3& v : mesh.vertices)
-    for (int k = 0; k < 3; ++k) scene.positions.push_back(static_cast<float>(v[k] - centre[k]));
-  scene.indices.reserve(3 * mesh.triangles.size());
-  scene.normals.reserve(mesh.triangles.size());
-  for (int t = 0; t < mesh.triangleCount(); ++t) {
-    for (int v : mesh.triangles[t]) scene.indices.push_back(static_cast<GLuint>(v));
-    scene.normals.push_back(triangleNormal(mesh, t));
-  }
-  scene.resolution = chooseResolution(mesh, scene.radius, options);
-  scene.cull = backFacesNeverShow(mesh);
-  return scene;
-}
+// Pixels the outline keeps inside its triangle: more than half, so the pixel centre a fragment is tested at (within
+// half a pixel of the line) lies inside the triangle.
+constexpr float kInset = 0.75f;
 
-// One view: the matrix for the vertex shader and the pixel rectangle the part's box can cover.
-struct View {
-  float rows[9];  // right, up, back divided by the radius; back = d (towards the eye), right x up = back
-  int x = 0, y = 0, width = 0, height = 0;
-};
-
-View makeView(const Vec3& d, const Scene& scene) {
-  const Vec3 back = d.normalized();
-  Eigen::Index least = 0;  // the axis least aligned with d makes the best-conditioned cross product
-  back.cwiseAbs().minCoeff(&least);
-  const Vec3 right = Vec3::Unit(least).cross(back).normalized();
-  const Vec3 up = back.cross(right);
-  View view;
-  const Vec3 axes[3] = {right, up, back};
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) view.rows[3 * r + c] = static_cast<float>(axes[r][c] / scene.radius);
-  // Reading back only the box's shadow saves read-back and scanning, most for long thin parts.
-  double lo[2] = {1, 1}, hi[2] = {-1, -1};
-  for (const Vec3& corner : scene.corners)
-    for (int k = 0; k < 2; ++k) {
-      lo[k] = std::min(lo[k], corner.dot(axes[k]) / scene.radius);
-      hi[k] = std::max(hi[k], corner.dot(axes[k]) / scene.radius);
-    }
-  const int n = scene.resolution;
-  auto pixel = [n](double ndc) { return std::clamp(static_cast<int>(std::floor((ndc + 1) / 2 * n)), 0, n); };
-  view.x = std::max(pixel(lo[0]) - 1, 0);  // a pixel of slack either side for rounding
-  view.y = std::max(pixel(lo[1]) - 1, 0);
-  view.width = std::min(pixel(hi[0]) + 2, n) - view.x;
-  view.height = std::min(pixel(hi[1]) + 2, n) - view.y;
-  return view;
-}
 
 // The GL objects of one worker's context: the mesh uploaded once, one framebuffer reused for every view.
 class ViewRenderer {
@@ -185,12 +129,15 @@ class ViewRenderer {
       throw std::invalid_argument("renderVisibility: resolution must be 1.." + std::to_string(max_size));
     program_ = linkProgram(kVertexShader, kFragmentShader, "visibility");
     view_location_ = glGetUniformLocation(program_, "view");
+    if (scene_.outlines) makeMarkProgram();
     upload();
     makeFramebuffer();
     checkGlError("renderVisibility setup");
   }
   ~ViewRenderer() {
     glDeleteProgram(program_);
+    glDeleteProgram(mark_program_);
+    glDeleteBuffers(1, &marks_buffer_);
     glDeleteVertexArrays(1, &vao_);
     glDeleteBuffers(2, buffers_);
     glDeleteFramebuffers(1, &fbo_);
@@ -201,7 +148,7 @@ class ViewRenderer {
 
   // Renders direction d; `ids` gets the view's rectangle, row by row: gl_PrimitiveID + 1, 0 = nothing or a back face.
   void render(const Vec3& d, std::vector<GLuint>& ids) {
-    const View view = makeView(d, scene_);
+    const View view = idrender::makeView(d, scene_);
     const GLuint zero[4] = {0, 0, 0, 0};
     glClearBufferuiv(GL_COLOR, 0, zero);
     glClear(GL_DEPTH_BUFFER_BIT);
@@ -211,7 +158,44 @@ class ViewRenderer {
     glReadPixels(view.x, view.y, view.width, view.height, GL_RED_INTEGER, GL_UNSIGNED_INT, ids.data());
   }
 
+  // After render(): marks every front-facing triangle with an edge or corner that shows, by setting its entry of
+  // `marks` (one per triangle, kept between views) to `stamp`.
+  void markOutlines(const Vec3& d, GLuint stamp, std::vector<GLuint>& marks) {
+    const View view = idrender::makeView(d, scene_);
+    glUseProgram(mark_program_);
+    glUniformMatrix3fv(mark_view_location_, 1, GL_TRUE, view.rows);
+    glUniform1ui(stamp_location_, stamp);
+    setOutlineState(true);
+    glDrawElements(GL_TRIANGLES, GLsizei(scene_.indices.size()), GL_UNSIGNED_INT, nullptr);
+    setOutlineState(false);
+    glUseProgram(program_);
+    marks.resize(scene_.normals.size());
+    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, marks.size() * sizeof(GLuint), marks.data());
+  }
+
  private:
+  void makeMarkProgram() {
+    mark_program_ = linkOutlineProgram();
+    mark_view_location_ = glGetUniformLocation(mark_program_, "view");
+    stamp_location_ = glGetUniformLocation(mark_program_, "stamp");
+    glUseProgram(mark_program_);
+    glUniform1f(glGetUniformLocation(mark_program_, "pixel"), 2.0f / n_);
+    glUniform1f(glGetUniformLocation(mark_program_, "inset"), kInset);
+    const std::vector<GLuint> zeros(std::max<std::size_t>(scene_.normals.size(), 1), 0);  // no stamp is 0
+    glGenBuffers(1, &marks_buffer_);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, marks_buffer_);
+    glBufferData(GL_SHADER_STORAGE_BUFFER, zeros.size() * sizeof(GLuint), zeros.data(), GL_DYNAMIC_READ);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, marks_buffer_);
+  }
+
+  // The outline pass tests against the fill's depth without changing it or the ids; off restores the fill pass's
+  // state (see makeFramebuffer()).
+  void setOutlineState(bool on) {
+    glDepthMask(on ? GL_FALSE : GL_TRUE);
+    glDepthFunc(on ? GL_LEQUAL : GL_LESS);
+    glColorMask(!on, !on, !on, !on);
+  }
+
   void upload() {
     glGenVertexArrays(1, &vao_);
     glBindVertexArray(vao_);
@@ -255,6 +239,8 @@ class ViewRenderer {
   const int n_;
   GLuint program_ = 0, vao_ = 0, buffers_[2] = {0, 0}, fbo_ = 0, renderbuffers_[2] = {0, 0};
   GLint view_location_ = -1;
+  GLuint mark_program_ = 0, marks_buffer_ = 0;
+  GLint mark_view_location_ = -1, stamp_location_ = -1;
 };
 
 // State the workers share. Results are merged and progress is counted under `mutex`; the calling thread alone
@@ -288,17 +274,31 @@ void collectVisible(const std::vector<GLuint>& pixels, const Scene& scene, const
   }
 }
 
+// Adds the triangles the outline passes marked with `stamp` and no pixel showed.
+void collectMarked(const std::vector<GLuint>& marks, GLuint stamp, const Scene& scene, const Vec3& d, int view,
+                   std::vector<int>& seen, std::vector<int>& visible) {
+  for (std::size_t t = 0; t < marks.size(); ++t) {
+    if (marks[t] != stamp || seen[t] == view) continue;
+    seen[t] = view;
+    if (scene.normals[t].dot(d) > 0) visible.push_back(static_cast<int>(t));
+  }
+}
+
 void renderDirections(Shared& shared) {
   OffscreenContext context;  // one per thread: OSMesa contexts are current on one thread at a time
   ViewRenderer renderer(shared.scene);
   std::vector<int> stamp(shared.scene.normals.size(), -1), visible;
-  std::vector<GLuint> ids;
+  std::vector<GLuint> ids, marks;
   ids.reserve(std::size_t(shared.scene.resolution) * shared.scene.resolution);
   const int count = static_cast<int>(shared.directions.size());
   for (int d = shared.next++; d < count && !shared.stop; d = shared.next++) {
     const Vec3 direction = shared.directions[d].normalized();
     renderer.render(direction, ids);
     collectVisible(ids, shared.scene, direction, d, stamp, visible);
+    if (shared.scene.outlines) {
+      renderer.markOutlines(direction, GLuint(d + 1), marks);
+      collectMarked(marks, GLuint(d + 1), shared.scene, direction, d, stamp, visible);
+    }
     std::lock_guard<std::mutex> lock(shared.mutex);  // other threads' bits share the same 64-bit words
     for (int t : visible) shared.bits.set(t, d);
     ++shared.done;
@@ -355,7 +355,7 @@ VisibilityMap renderVisibility(const Mesh& mesh, const std::vector<Vec3>& direct
   if (mesh.triangles.empty() || directions.empty()) return map;
   if (progress && !progress(0.0)) throw std::runtime_error("cancelled");
 
-  const Scene scene = prepareScene(mesh, options);
+  const Scene scene = idrender::prepareScene(mesh, options);
   Shared shared(scene, directions, map.bits);
   const int threads = threadCount(options, directions.size());
   shared.running = threads;
