@@ -34,8 +34,10 @@ void speed() {
   const Part part = loadPart(kParts + "/nist_ctc_02_asme1_rc_fine_tess.stl");
   const DirectionSet set = sampleSphere(4);
   const int T = part.mesh.triangleCount(), D = set.size();
-  double s = secondsOf([&] { rayVisibility(part.mesh, set.directions); });
-  printRate("ray (Embree), 4 samples [default]", T, D, s);
+  double s = secondsOf([&] { rayVisibility(part.mesh, set.directions, withEdgeRefinement()); });
+  printRate("ray, 4 samples + edges [default]", T, D, s);
+  s = secondsOf([&] { rayVisibility(part.mesh, set.directions); });
+  printRate("ray (Embree), 4 samples", T, D, s);
   RayVisibilityOptions one;
   one.samples_per_triangle = 1;
   s = secondsOf([&] { rayVisibility(part.mesh, set.directions, one); });
@@ -54,20 +56,20 @@ void speed() {
 }
 
 void scaling() {
-  std::printf("scaling: triangles (STEP tessellated finer) and directions (sphere level), ray backend\n");
+  std::printf("scaling: triangles (STEP tessellated finer) and directions (sphere level), default ray backend\n");
   const DirectionSet set = sampleSphere(4);
   for (double tolerance : {2.0, 0.5, 0.15}) {
     LoadOptions load;
     load.chordal_tolerance = tolerance;
     const Part part = loadPart(kParts + "/nist_ctc_02_asme1_rc.stp", load);
-    const double s = secondsOf([&] { rayVisibility(part.mesh, set.directions); });
+    const double s = secondsOf([&] { rayVisibility(part.mesh, set.directions, withEdgeRefinement()); });
     printRate(("CTC 2, chordal " + std::to_string(tolerance).substr(0, 4) + " mm").c_str(),
               part.mesh.triangleCount(), set.size(), s);
   }
   const Part part = loadPart(kParts + "/nist_ctc_02_asme1_rc_fine_tess.stl");
   for (int level : {3, 4, 5}) {
     const DirectionSet dirs = sampleSphere(level);
-    const double s = secondsOf([&] { rayVisibility(part.mesh, dirs.directions); });
+    const double s = secondsOf([&] { rayVisibility(part.mesh, dirs.directions, withEdgeRefinement()); });
     printRate(("fine tessellation, level " + std::to_string(level)).c_str(), part.mesh.triangleCount(), dirs.size(), s);
   }
 }
@@ -119,6 +121,7 @@ void accuracy(const std::string& only, int level) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);  // figures appear as they are measured, also into a file
   const std::string what = argc > 1 ? argv[1] : "all";
   try {
     if (what == "speed" || what == "all") speed();

@@ -1,5 +1,7 @@
 // part_server_node over ROS: loads, serves, rejects bad requests with a reason, and stays up.
 #include <gtest/gtest.h>
+
+#include <cmath>
 #include <ros/ros.h>
 #include <ros/topic.h>
 
@@ -9,6 +11,8 @@
 #include <art2part/LoadedPart.h>
 
 #include "../src/nodes/part_conversions.h"
+#include "art2part/geometry/mesh_io.h"
+#include "test_meshes.h"
 
 using namespace art2part;
 
@@ -46,6 +50,24 @@ TEST(PartServer, LoadsServesAndSurvivesBadRequests) {
   }
   EXPECT_FALSE(load(kExample, "x", "furlongs").success);
 
+  // Meshes that are files of the right kind but not parts: NaN, a size that says metres, zero size.
+  const std::string dir = test::tempDir();
+  Mesh nan = test::box(Vec3(0, 0, 0), Vec3(10, 10, 10));
+  nan.vertices[2].x() = std::nan("");
+  writeBinaryStl(nan, dir + "/nan.stl");
+  writeBinaryStl(test::box(Vec3(0, 0, 0), Vec3(0.1, 0.05, 0.02)), dir + "/metres.stl");
+  writeBinaryStl(test::box(Vec3(3, 3, 3), Vec3(3, 3, 3)), dir + "/point.stl");
+  for (const auto& [file, reason] : {std::pair<std::string, std::string>{"nan.stl", "not a finite number"},
+                                     {"metres.stl", "metres"},
+                                     {"point.stl", "zero size"}}) {
+    const LoadPart::Response r = load(dir + "/" + file);
+    EXPECT_FALSE(r.success) << file;
+    EXPECT_NE(r.message.find(reason), std::string::npos) << r.message;
+  }
+  LoadPart::Response metres = load(dir + "/metres.stl", "in-metres", "m");  // told the unit, it loads
+  EXPECT_TRUE(metres.success) << metres.message;
+  EXPECT_NEAR(metres.summary.box_max.x - metres.summary.box_min.x, 0.1, 1e-6);  // float32 in the STL
+
   GetPart get;
   get.request.part_id = "ctc1";
   ASSERT_TRUE(ros::service::call("get_part", get));
@@ -66,11 +88,11 @@ TEST(PartServer, LoadsServesAndSurvivesBadRequests) {
   // The latched topic carries the last good part.
   auto latched = ros::topic::waitForMessage<LoadedPart>("part", ros::Duration(10));
   ASSERT_TRUE(latched);
-  EXPECT_EQ(latched->id, "ctc1");
+  EXPECT_EQ(latched->id, "in-metres");
 
   ListParts list;
   ASSERT_TRUE(ros::service::call("list_parts", list));
-  EXPECT_EQ(list.response.part_ids, std::vector<std::string>{"ctc1"});
+  EXPECT_EQ(list.response.part_ids, (std::vector<std::string>{"ctc1", "in-metres"}));
 }
 
 int main(int argc, char** argv) {

@@ -2,15 +2,15 @@
 
 namespace art2part {
 
-namespace {
-
-geometry_msgs::Point toPoint(const Vec3& p_mm) {
+geometry_msgs::Point toPointMsg(const Vec3& mm) {
   geometry_msgs::Point p;
-  p.x = p_mm.x() * kMetresPerMm;
-  p.y = p_mm.y() * kMetresPerMm;
-  p.z = p_mm.z() * kMetresPerMm;
+  p.x = mm.x() * kMetresPerMm;
+  p.y = mm.y() * kMetresPerMm;
+  p.z = mm.z() * kMetresPerMm;
   return p;
 }
+
+namespace {
 
 geometry_msgs::Vector3 toVector(const Vec3& v) {
   geometry_msgs::Vector3 out;
@@ -26,7 +26,7 @@ FaceSurface toFaceMsg(const Face& f) {
   m.normal = toVector(f.normal);
   m.offset = f.offset * kMetresPerMm;
   m.axis = toVector(f.axis);
-  m.point = toPoint(f.point);
+  m.point = toPointMsg(f.point);
   m.radius = f.radius * kMetresPerMm;
   m.minor_radius = f.minor_radius * kMetresPerMm;
   m.half_angle = f.half_angle;
@@ -66,8 +66,8 @@ PartSummary toSummaryMsg(const Part& part) {
   s.spheres = counts.sphere;
   s.tori = counts.torus;
   s.others = counts.other;
-  s.box_min = toPoint(c.box.min);
-  s.box_max = toPoint(c.box.max);
+  s.box_min = toPointMsg(c.box.min);
+  s.box_max = toPointMsg(c.box.max);
   s.closed = c.closed;
   s.manifold = c.manifold;
   s.boundary_edges = c.boundary_edges;
@@ -84,7 +84,7 @@ LoadedPart toMsg(const Part& part, const std::string& id) {
   m.id = id;
   m.source = part.source;
   m.mesh.vertices.reserve(part.mesh.vertices.size());
-  for (const Vec3& v : part.mesh.vertices) m.mesh.vertices.push_back(toPoint(v));
+  for (const Vec3& v : part.mesh.vertices) m.mesh.vertices.push_back(toPointMsg(v));
   m.mesh.triangles.resize(part.mesh.triangles.size());
   for (std::size_t t = 0; t < part.mesh.triangles.size(); ++t)
     for (int k = 0; k < 3; ++k) m.mesh.triangles[t].vertex_indices[k] = part.mesh.triangles[t][k];

@@ -10,6 +10,9 @@ namespace art2part {
 
 constexpr double kMetresPerMm = 1e-3;
 
+// A point in mm of the core as a message point in metres.
+geometry_msgs::Point toPointMsg(const Vec3& mm);
+
 PartSummary toSummaryMsg(const Part& part);
 LoadedPart toMsg(const Part& part, const std::string& id);
 // Rebuilds the core part from a message (adjacency and checks recomputed). Throws InputError on a malformed message.

@@ -35,12 +35,7 @@ visualization_msgs::Marker partMarker(const Part& part, const std::string& frame
     const std_msgs::ColorRGBA colour =
         colourOf(f >= 0 && f < static_cast<int>(part.faces.size()) ? part.faces[f] : other);
     for (int k = 0; k < 3; ++k) {
-      const Vec3& v = part.mesh.corner(t, k);
-      geometry_msgs::Point p;
-      p.x = v.x() * kMetresPerMm;
-      p.y = v.y() * kMetresPerMm;
-      p.z = v.z() * kMetresPerMm;
-      m.points.push_back(p);
+      m.points.push_back(toPointMsg(part.mesh.corner(t, k)));
       m.colors.push_back(colour);
     }
   }

@@ -11,14 +11,6 @@ namespace {
 
 constexpr double kFourPi = 4.0 * 3.14159265358979323846;
 
-geometry_msgs::Point toPointMsg(const Vec3& mm) {
-  geometry_msgs::Point p;
-  p.x = mm.x() * kMetresPerMm;
-  p.y = mm.y() * kMetresPerMm;
-  p.z = mm.z() * kMetresPerMm;
-  return p;
-}
-
 std_msgs::ColorRGBA toColour(const Rgb& c, float alpha = 1.0f) {
   std_msgs::ColorRGBA out;
   out.r = c[0];

@@ -39,7 +39,7 @@ void checkPartSize(const Box& box, const std::string& where) {
     throw InputError(out.str());
   }
   if (extent < 0.5) {
-    out << "the part is only " << extent << " mm across; the file is probably in metres (try --units m)";
+    out << "the part is only " << extent << " mm across; the file is probably in metres (give the unit: --units m, or units 'm' in a request)";
     throw InputError(out.str());
   }
   if (extent > 20000.0) {
