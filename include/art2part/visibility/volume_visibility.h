@@ -9,8 +9,9 @@
 // O(triangles + pixels + voxels).
 //
 // Storage: the per-voxel cones are interned. A voxel holds a 32-bit index into a table of distinct cones; voxels
-// inside the part hold kInsidePart. Many voxels share a cone (everything above the part sees the same upper
-// hemisphere), so the table stays small next to a bitset per voxel (D / 8 bytes each).
+// inside the part hold kInsidePart. Far from the part many voxels share a cone, but near it cones hardly repeat
+// (86-95% of delta voxels had a distinct cone on ANC101 at 2 mm and CTC 1 at 4 mm), so this only halves the memory
+// of a bitset per voxel (D / 8 bytes each); differences between neighbouring voxels would store far less.
 #pragma once
 
 #include <array>
