@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -79,9 +81,32 @@ TEST(Cli, BadInputGivesOneLineAndExitOne) {
   }
 }
 
+TEST(Cli, VisibilityWritesTheContractFiles) {
+  const std::string dir = test::tempDir() + "/vis";
+  const CliRun r = run("visibility " + kExample + " --out " + dir + " --level 1 --picture " + dir + "/cones.png");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::ifstream csv(dir + "/directions.csv");
+  const int lines = static_cast<int>(std::count(std::istreambuf_iterator<char>(csv), {}, '\n'));
+  EXPECT_GE(lines, 16);  // 4 * 4^1 cells, special directions replace or join them
+  std::ifstream stl(dir + "/mesh.stl", std::ios::binary);
+  char header[84];
+  ASSERT_TRUE(stl.read(header, 84));
+  std::uint32_t triangles = 0;
+  std::memcpy(&triangles, header + 80, 4);
+  std::ifstream bits(dir + "/visibility.bits", std::ios::binary | std::ios::ate);
+  EXPECT_EQ(static_cast<long>(bits.tellg()), static_cast<long>(triangles) * ((lines + 7) / 8));
+  EXPECT_TRUE(std::ifstream(dir + "/cones.png").good());
+  // An output folder that cannot be made: one line, exit 1.
+  const CliRun bad = run("visibility " + kExample + " --out /proc/art2part/nope --level 1");
+  EXPECT_EQ(bad.status, 1) << bad.err;
+  EXPECT_EQ(bad.err.rfind("art2part: error: ", 0), 0u) << bad.err;
+}
+
 TEST(Cli, MisuseGivesUsageAndExitTwo) {
   EXPECT_EQ(run("info").status, 2);
   EXPECT_EQ(run("info " + kExample + " --no-such-option").status, 2);
   EXPECT_EQ(run("info " + kExample + " --units furlongs").status, 1);
   EXPECT_EQ(run("frobnicate").status, 2);
+  EXPECT_EQ(run("visibility " + kExample).status, 2) << "no --out";
+  EXPECT_EQ(run("visibility " + kExample + " --out /tmp/x --level 9").status, 1) << "level out of range";
 }

@@ -20,7 +20,12 @@ int runRender(const std::vector<std::string>& args) {
     throw UsageError("--width and --height must be between 16 and 8192");
   options.triangle_colours = triangleColoursByFace(part);
   options.draw_edges = a.flag("edges");
-  writePng(renderPicture(part.mesh, options), a.value("out"));
+  const Image image = renderPicture(part.mesh, options);
+  try {
+    writePng(image, a.value("out"));
+  } catch (const std::runtime_error& e) {
+    throw InputError(e.what());  // a path the user gave us
+  }
   std::cout << "wrote " << a.value("out") << " (" << options.width << "x" << options.height << ", "
             << part.mesh.triangleCount() << " triangles, faces coloured by surface type)\n";
   return 0;

@@ -43,7 +43,12 @@ void writeConePicture(const Part& part, const VisibilityResult& r, const std::st
     picture.triangle_colours.push_back({static_cast<unsigned char>(255 * c[0]), static_cast<unsigned char>(255 * c[1]),
                                         static_cast<unsigned char>(255 * c[2])});
   }
-  writePng(renderPicture(part.mesh, picture), path);
+  const Image image = renderPicture(part.mesh, picture);
+  try {
+    writePng(image, path);
+  } catch (const std::runtime_error& e) {
+    throw InputError(e.what());  // a path the user gave us
+  }
 }
 
 }  // namespace

@@ -12,7 +12,7 @@ namespace art2part {
 // Throws InputError for a missing or unreadable file or one with no triangles.
 Mesh readMeshFile(const std::string& path);
 
-// Binary STL, float32, as the file contracts require.
+// Binary STL, float32, as the file contracts require. Throws InputError when the file cannot be written.
 void writeBinaryStl(const Mesh& mesh, const std::string& path, const std::string& header = "art2part");
 
 bool hasExtension(const std::string& path, const std::string& ext);  // case-insensitive, ext without the dot

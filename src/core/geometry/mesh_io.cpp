@@ -77,7 +77,7 @@ Mesh readMeshFile(const std::string& path) {
 
 void writeBinaryStl(const Mesh& mesh, const std::string& path, const std::string& header) {
   std::ofstream out(path, std::ios::binary);
-  if (!out) throw std::runtime_error("cannot write '" + path + "'");
+  if (!out) throw InputError("cannot write '" + path + "'");
   char head[80] = {0};
   // A binary STL header must not start with "solid" or readers take it for ASCII.
   std::strncpy(head, header.rfind("solid", 0) == 0 ? ("binary " + header).c_str() : header.c_str(), 79);
@@ -94,7 +94,7 @@ void writeBinaryStl(const Mesh& mesh, const std::string& path, const std::string
     const std::uint16_t attribute = 0;
     out.write(reinterpret_cast<const char*>(&attribute), 2);
   }
-  if (!out) throw std::runtime_error("write failed for '" + path + "'");
+  if (!out) throw InputError("writing '" + path + "' failed");
 }
 
 }  // namespace art2part

@@ -2,7 +2,8 @@
 
 #include <chrono>
 #include <cstdio>
-#include <sys/stat.h>
+#include <filesystem>
+#include <system_error>
 
 #include "art2part/geometry/mesh_io.h"
 #include "art2part/visibility/cones.h"
@@ -61,7 +62,9 @@ VisibilityResult analyseVisibility(const Part& part, const VisibilityOptions& op
 }
 
 void writeVisibilityFiles(const Part& part, const VisibilityResult& result, const std::string& folder) {
-  mkdir(folder.c_str(), 0755);  // an existing folder is fine; a failure shows when writing
+  std::error_code error;
+  std::filesystem::create_directories(folder, error);
+  if (error) throw InputError("cannot create the output folder '" + folder + "': " + error.message());
   writeBinaryStl(part.mesh, folder + "/mesh.stl", "art2part mesh analysed for visibility, mm");
   FILE* f = std::fopen((folder + "/directions.csv").c_str(), "w");
   if (!f) throw InputError("cannot write '" + folder + "/directions.csv'");
