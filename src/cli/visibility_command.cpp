@@ -69,7 +69,8 @@ int runVisibility(const std::vector<std::string>& args) {
             << " special)\n"
             << "backend:     " << visibilityBackendName(options.backend) << ", " << r.seconds_visibility << " s, "
             << std::setprecision(0) << pairs / std::max(r.seconds_visibility, 1e-9) << " pairs/s\n"
-            << "side pairs:  " << r.side_pairs_added << " added by side correction\n"
+            << std::setprecision(3) << "side pairs:  " << r.side_pairs_added << " added by side correction ("
+            << r.seconds_side << " s)\n"
             << "unseen:      " << r.unseen_triangles.size() << " triangles visible along no direction\n"
             << "wrote:       " << a.value("out") << "/{mesh.stl,directions.csv,visibility.bits}\n";
   return 0;

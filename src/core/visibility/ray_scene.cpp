@@ -105,12 +105,6 @@ Prepared prepare(const Mesh& mesh, int samples) {
     const Vec3 r = v - centre;
     p.vertices.push_back({float(r.x()), float(r.y()), float(r.z())});
   }
-  const std::vector<std::array<int, 3>> across = edgeNeighbours(mesh.triangles);
-  p.walk.resize(mesh.triangles.size());
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    for (int k = 0; k < 3; ++k) p.walk[t].corner[k] = p.vertices[mesh.triangles[t][k]];
-    p.walk[t].across = across[t];
-  }
   const int n = mesh.triangleCount();
   std::vector<std::uint32_t> code(n);
   for (int t = 0; t < n; ++t) code[t] = mortonCode((triangleCentroid(mesh, t) - box.min).cwiseQuotient(size));
@@ -119,6 +113,15 @@ Prepared prepare(const Mesh& mesh, int samples) {
   std::stable_sort(p.triangle.begin(), p.triangle.end(), [&](int a, int b) { return code[a] < code[b]; });
   p.position.resize(n);
   for (int i = 0; i < n; ++i) p.position[p.triangle[i]] = i;
+  const std::vector<std::array<int, 3>> across = edgeNeighbours(mesh.triangles);
+  p.walk.resize(n);
+  for (int i = 0; i < n; ++i) {
+    const int t = p.triangle[i];
+    for (int k = 0; k < 3; ++k) {
+      p.walk[i].corner[k] = p.vertices[mesh.triangles[t][k]];
+      p.walk[i].across[k] = across[t][k] < 0 ? -1 : p.position[across[t][k]];
+    }
+  }
   p.lift = lift;
 
   p.nx.resize(n);
@@ -141,11 +144,10 @@ Prepared prepare(const Mesh& mesh, int samples) {
   return p;
 }
 
-Float3 edgeSample(const Prepared& p, int t, int k, double along) {
-  const WalkTriangle& triangle = p.walk[t];
+Float3 edgeSample(const Prepared& p, int i, int k, double along) {
+  const WalkTriangle& triangle = p.walk[i];
   const Vec3 a = toVec(triangle.corner[k]), b = toVec(triangle.corner[(k + 1) % 3]);
   const Vec3 opposite = toVec(triangle.corner[(k + 2) % 3]);
-  const int i = p.position[t];
   const Vec3 normal(p.nx[i], p.ny[i], p.nz[i]);
   const Vec3 o = (1 - kEdgeInset) * (a + along * (b - a)) + kEdgeInset * opposite + p.lift * normal;
   return {float(o.x()), float(o.y()), float(o.z())};
@@ -217,8 +219,8 @@ void EmbreeScene::addTriangles(const Prepared& p) {
     throw std::runtime_error("Embree: cannot allocate the mesh buffers");
   }
   std::copy(p.vertices.begin(), p.vertices.end(), vertices);
-  for (const Triangle& t : p.corners)
-    for (int k = 0; k < 3; ++k) *indices++ = static_cast<unsigned>(t[k]);
+  for (int t : p.triangle)  // in position order: primitive ids are positions
+    for (int k = 0; k < 3; ++k) *indices++ = static_cast<unsigned>(p.corners[t][k]);
   rtcCommitGeometry(geometry);
   rtcAttachGeometry(scene_, geometry);
   rtcReleaseGeometry(geometry);  // the scene keeps its own reference

@@ -21,16 +21,18 @@ constexpr int kMaxSamples = 7;
 // per step instead of five scattered reads).
 struct WalkTriangle {
   Float3 corner[3];
-  std::array<int, 3> across;  // triangle across edge k (corners k, k + 1); -1: boundary or non-manifold edge
+  std::array<int, 3> across;  // position across edge k (corners k, k + 1); -1: boundary or non-manifold edge
 };
 
 // What the tracing threads share, computed once. Per-triangle data is stored in Morton order (position i holds
-// triangle triangle[i]), so each direction walks it front to back and neighbouring rays start side by side.
+// triangle triangle[i]), so each direction walks it front to back and neighbouring rays start side by side. Embree
+// sees the triangles in that order too: its primitive ids, the occluders and the walk all speak in positions, so
+// the occluders of neighbouring rays sit close in memory.
 struct Prepared {
   int samples = 1;
   std::vector<Float3> vertices;              // relative to the box centre: exactly what Embree sees
   std::vector<Triangle> corners;             // by triangle index, as in the mesh
-  std::vector<WalkTriangle> walk;            // by triangle index
+  std::vector<WalkTriangle> walk;            // by position
   std::vector<int> triangle;                 // triangle index at each position
   std::vector<int> position;                 // position of each triangle index
   double lift = 0;                           // of every ray origin off its triangle, along the normal
@@ -43,13 +45,14 @@ struct Prepared {
 // samples: 1..kMaxSamples.
 Prepared prepare(const Mesh& mesh, int samples);
 
-// A ray origin just inside edge k (corners k, k + 1) of triangle t, a fraction `along` of the way from corner k, lifted
-// like the samples.
-Float3 edgeSample(const Prepared& p, int t, int k, double along);
+// A ray origin just inside edge k (corners k, k + 1) of the triangle at position i, a fraction `along` of the way
+// from corner k, lifted like the samples.
+Float3 edgeSample(const Prepared& p, int i, int k, double along);
 
-// Follows the ray over the surface from triangle t, crossing to the neighbour beyond whichever edge the ray passes
-// outside of, and returns a triangle the ray clearly passes through in front of its origin, or -1 when the walk
-// leaves the surface, turns back or takes too long. Any triangle returned is a real occluder.
+// Follows the ray over the surface from the triangle at position t, crossing to the neighbour beyond whichever edge
+// the ray passes outside of, and returns the position of a triangle the ray clearly passes through in front of its
+// origin, or -1 when the walk leaves the surface, turns back or takes too long. Any triangle returned is a real
+// occluder.
 int walkToHit(const Prepared& p, const Float3& origin, const Vec3& d, int t);
 
 // An occlusion query's context, extended with where the filter writes the occluder of each ray (indexed by the

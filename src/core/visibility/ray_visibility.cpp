@@ -46,10 +46,11 @@ using raycast::Prepared;
 constexpr std::size_t kBlock = 1024;
 
 // Edge refinement: where along a shared edge the extra rays start (fractions from its first corner), and how many
-// rounds of spreading from newly visible triangles to their neighbours at most.
+// rounds of spreading from newly visible triangles to their neighbours at most (a round costs only the edges beside
+// the triangles the last one found, so the cap is generous: a visible strip can cross many thin triangles).
 constexpr double kEdgeSamples[] = {0.5, 0.12, 0.88};
 constexpr int kEdgeSampleCount = 3;
-constexpr int kRefineRounds = 12;
+constexpr int kRefineRounds = 24;
 
 // The id of a ray whose occluder is not worth recording: beyond every position, so the filter skips it.
 constexpr int kNoOccluder = -1;
@@ -82,42 +83,47 @@ class Tracer {
   }
 
  private:
-  // Rounds of edge samples for the hidden triangles beside visible ones; seen_ marks by position the triangles
-  // visible along this direction (stamped with a per-direction number, so it never needs clearing).
+  // Rounds of edge samples for the hidden triangles beside visible ones, spreading outwards: each round tries only
+  // the edges across from triangles the previous round (or the samples) found visible, since a ray that failed from
+  // the same point would fail again. seen_ marks by position the triangles visible along this direction (stamped
+  // with a per-direction number, so it never needs clearing).
   void refineEdges(const Vec3& d) {
     ++stamp_;
-    std::size_t marked = 0;
-    for (int round = 0; round < kRefineRounds && !pending_.empty(); ++round) {
-      for (; marked < visible_.size(); ++marked) seen_[visible_[marked]] = stamp_;
-      if (!edgePass(d)) break;
+    for (int i : visible_) seen_[i] = stamp_;
+    std::size_t fresh = 0;  // visible_[fresh..] became visible in the last round
+    for (int round = 0; round < kRefineRounds && fresh < visible_.size(); ++round) {
+      const std::size_t end = visible_.size();
+      edgePass(d, fresh, end);
+      fresh = end;
     }
   }
 
-  // One round: rays from near every edge a pending triangle shares with a visible one. Returns whether any escaped;
-  // pending_ keeps the rest.
-  bool edgePass(const Vec3& d) {
-    const std::size_t before = visible_.size();
+  // One round: rays from near every edge that a front-facing, still hidden triangle shares with visible_[begin, end),
+  // in position order so that neighbouring rays start side by side.
+  void edgePass(const Vec3& d, std::size_t begin, std::size_t end) {
+    const double dx = d.x(), dy = d.y(), dz = d.z();
+    edges_.clear();
+    for (std::size_t v = begin; v < end; ++v) {
+      const int j = visible_[v];
+      for (int i : p_.walk[j].across) {
+        if (i < 0 || seen_[i] == stamp_ || !(p_.nx[i] * dx + p_.ny[i] * dy + p_.nz[i] * dz > 0.0)) continue;
+        for (int k = 0; k < 3; ++k)
+          if (p_.walk[i].across[k] == j) edges_.push_back(i << 2 | k);
+      }
+    }
+    std::sort(edges_.begin(), edges_.end());
     rays_.clear();
     owners_.clear();
-    for (int i : pending_) {
-      const int t = p_.triangle[i];
-      for (int k = 0; k < 3; ++k) {
-        const int across = p_.walk[t].across[k];
-        if (across < 0 || seen_[p_.position[across]] != stamp_) continue;
-        if (rays_.size() + kEdgeSampleCount > kBlock) traceEdgeRays();
-        for (double along : kEdgeSamples) {
-          addRay(raycast::edgeSample(p_, t, k, along), d, kNoOccluder);
-          owners_.push_back(i);
-        }
+    for (int e : edges_) {
+      const int i = e >> 2, k = e & 3;
+      if (seen_[i] == stamp_) continue;  // an earlier block of this round found it
+      if (rays_.size() + kEdgeSampleCount > kBlock) traceEdgeRays();
+      for (double along : kEdgeSamples) {
+        addRay(raycast::edgeSample(p_, i, k, along), d, kNoOccluder);
+        owners_.push_back(i);
       }
     }
     traceEdgeRays();
-    if (visible_.size() == before) return false;
-    hidden_.clear();
-    for (int i : pending_)
-      if (seen_[i] != stamp_) hidden_.push_back(i);
-    pending_.swap(hidden_);
-    return true;
   }
 
   // Traces the edge rays gathered so far; each owner with a ray that escaped becomes visible (once).
@@ -202,6 +208,7 @@ class Tracer {
   std::array<char, kBlock> walked_;  // whether the walk settled each triangle of the block
   std::vector<RTCRay> rays_;
   std::vector<int> seen_, owners_;  // edge refinement: visible stamps by position; the position of each edge ray
+  std::vector<int> edges_;          // edge refinement: position << 2 | edge of each edge to try this round
   int stamp_ = 0;
 };
 
