@@ -3,6 +3,8 @@
 
 #include <cstdio>
 #include <fstream>
+#include <random>
+#include <vector>
 #include <string>
 #include <unistd.h>
 
@@ -53,6 +55,18 @@ inline std::string tempDir() {
 inline void writeText(const std::string& path, const std::string& text) {
   std::ofstream out(path);
   out << text;
+}
+
+// Directions spread evenly over the sphere (normalised Gaussian vectors), the same for the same seed.
+inline std::vector<Vec3> randomDirections(int count, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> g;
+  std::vector<Vec3> out;
+  while (static_cast<int>(out.size()) < count) {
+    const Vec3 v(g(rng), g(rng), g(rng));
+    if (v.norm() > 1e-6) out.push_back(v.normalized());
+  }
+  return out;
 }
 
 inline std::string asciiStl(const Mesh& m) {

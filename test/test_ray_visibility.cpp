@@ -27,16 +27,7 @@ struct AlignedBox {
   Vec3 lo, hi;
 };
 
-std::vector<Vec3> randomDirections(int n, unsigned seed) {
-  std::mt19937 random(seed);
-  std::normal_distribution<double> normal;
-  std::vector<Vec3> directions;
-  while (static_cast<int>(directions.size()) < n) {
-    const Vec3 d(normal(random), normal(random), normal(random));
-    if (d.norm() > 1e-3) directions.push_back(d.normalized());
-  }
-  return directions;
-}
+using test::randomDirections;
 
 std::vector<Vec3> axisDirections() {
   return {Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(), -Vec3::UnitY(), Vec3::UnitZ(), -Vec3::UnitZ()};
@@ -109,6 +100,17 @@ std::string differences(const VisibilityMap& got, const VisibilityMap& want, con
 constexpr int kTopA = 2, kTopB = 3;
 
 // ---- ray casting ----------------------------------------------------------------------------------------------------
+
+// Ray casting with `samples` samples equals the independent box-geometry answer; returns that answer.
+VisibilityMap expectBoxAnswer(const Mesh& mesh, const std::vector<AlignedBox>& boxes,
+                              const std::vector<Vec3>& directions, int samples) {
+  RayVisibilityOptions options;
+  options.samples_per_triangle = samples;
+  const VisibilityMap got = rayVisibility(mesh, directions, options);
+  VisibilityMap want = expectedForBoxes(mesh, boxes, directions, samples);
+  EXPECT_TRUE(got.bits == want.bits) << "samples " << samples << "\n" << differences(got, want, directions);
+  return want;
+}
 
 TEST(RayVisibility, ConvexBoxFaceVisibleExactlyWhereItFaces) {
   // Far from the origin on purpose: coordinates must be taken relative to the part, not cast to float as they are.
@@ -197,13 +199,7 @@ TEST(RayVisibility, StepLowerTopHiddenBehindTheUpperBlock) {
 TEST(RayVisibility, StepMatchesTheBoxGeometryForRandomDirections) {
   const Mesh mesh = meshOf(kStep);
   const std::vector<Vec3> directions = randomDirections(300, 2);
-  for (int samples : {1, 4}) {
-    RayVisibilityOptions options;
-    options.samples_per_triangle = samples;
-    const VisibilityMap got = rayVisibility(mesh, directions, options);
-    const VisibilityMap want = expectedForBoxes(mesh, kStep, directions, samples);
-    EXPECT_TRUE(got.bits == want.bits) << "samples " << samples << "\n" << differences(got, want, directions);
-  }
+  for (int samples : {1, 4}) expectBoxAnswer(mesh, kStep, directions, samples);
 }
 
 TEST(RayVisibility, MoreSamplesSeeMore) {
@@ -275,11 +271,7 @@ TEST(RayVisibility, HoleMatchesTheBoxGeometryForRandomDirections) {
   for (Vec3& d : directions) d.z() = std::abs(d.z()) + 2.0;  // most of them steep enough to reach the floor
   for (Vec3& d : directions) d.normalize();
   for (int samples : {1, 4}) {
-    RayVisibilityOptions options;
-    options.samples_per_triangle = samples;
-    const VisibilityMap got = rayVisibility(mesh, directions, options);
-    const VisibilityMap want = expectedForBoxes(mesh, kHole, directions, samples);
-    EXPECT_TRUE(got.bits == want.bits) << "samples " << samples << "\n" << differences(got, want, directions);
+    const VisibilityMap want = expectBoxAnswer(mesh, kHole, directions, samples);
     EXPECT_GT(want.bits.rowCount(kTopA), 0);
     EXPECT_LT(want.bits.rowCount(kTopA), 300);
   }

@@ -38,16 +38,7 @@ int sharedCorners(const DirectionSet& set, int a, int b) {
   return n;
 }
 
-std::vector<Vec3> randomDirections(int count, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> g;
-  std::vector<Vec3> out;
-  while (static_cast<int>(out.size()) < count) {
-    const Vec3 v(g(rng), g(rng), g(rng));
-    if (v.norm() > 1e-6) out.push_back(v.normalized());
-  }
-  return out;
-}
+using test::randomDirections;
 
 bool hasDirection(const std::vector<SpecialDirection>& list, const Vec3& d, double tol = 1e-9) {
   for (const SpecialDirection& s : list)
