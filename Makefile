@@ -30,7 +30,9 @@ demo: build
 	$(BIN)/art2part info $(EXAMPLE) --json > $(OUT)/part.json
 	$(BIN)/art2part render $(EXAMPLE) --out $(OUT)/part.png
 	$(BIN)/art2part visibility $(EXAMPLE) --out $(OUT) --picture $(OUT)/cones.png | tee $(OUT)/visibility.txt
-	@echo "demo: results in $(OUT): part.txt part.json part.png, mesh.stl directions.csv visibility.bits cones.png"
+	$(BIN)/art2part plan $(EXAMPLE) --out $(OUT) | tee $(OUT)/plan.txt
+	@echo "demo: results in $(OUT): part.txt part.json part.png, mesh.stl directions.csv visibility.bits cones.png," \
+	  "plan.txt plan.json setups.png"
 
 # All tests: gtest per stage and rostest integration, through ctest (catkin_make run_tests exits 0 on failures).
 test: build

@@ -12,7 +12,19 @@ const char* kUsage =
     "  info PART [--json] [--units mm|in|m] [--tolerance MM]   what the part is: triangles, faces, box, volume\n"
     "  render PART --out FILE.png [--width W] [--height H] [--units U]   a shaded picture (OSMesa), faces coloured\n"
     "  visibility PART --out DIR [--picture CONES.png] [--level L] [--sphere tetrahedron|icosahedron] [--backend ray|render]\n              [--no-special] [--no-side] [--resolution PX]\n"
-    "             [--samples N] [--threads N]   visibility cones: DIR/mesh.stl, directions.csv, visibility.bits\n";
+    "             [--samples N] [--threads N]   visibility cones: DIR/mesh.stl, directions.csv, visibility.bits\n"
+    "  setups PART [--mode 3axis|5axis] [--tilt DEG] [--time-limit S] [--no-pp] [--json] [visibility options]\n"
+    "             the fewest setups (minimum cover of the visibility cones), their frames and what each machines\n"
+    "  plan PART --out DIR [--mode 3axis|5axis] [--tilt DEG] [--level L] [...setups options]\n"
+    "             the pipeline so far: DIR/plan.json, setups.png and the visibility files\n"
+    "  verify DIR [--part FILE] [--resolution MM] [--tolerance MM] [--stock-margin MM] [--stock FILE]\n"
+    "             [--picture FILE.png] [--stock-out FILE.stl] [--threads N]   simulate DIR/toolpaths.csv: JSON report,\n"
+    "             exit 1 on any gouge or collision\n"
+    "  post DIR --machine FILE [--out DIR2] [--mode 3+2|5axis|auto] [--tolerance MM] [--blend-tolerance MM]\n"
+    "             [--rate HZ] [--name NAME]   G-code for LinuxCNC from DIR/toolpaths.csv and tools.json: program.ngc,\n"
+    "             setup_<k>.ngc, tool.tbl, tool_rs274.tbl (inches) and trajectory.csv (time, joints in mm and deg)\n"
+    "  urdf --machine FILE [--setup K] [--out FILE.urdf]   the machine's URDF (m, rad) with the part frame at the\n"
+    "             fixture of setup K, for robot_state_publisher\n";
 
 }  // namespace
 
@@ -28,6 +40,11 @@ int main(int argc, char** argv) {
     if (command == "info") return art2part::runInfo(args);
     if (command == "render") return art2part::runRender(args);
     if (command == "visibility") return art2part::runVisibility(args);
+    if (command == "setups") return art2part::runSetups(args);
+    if (command == "plan") return art2part::runPlan(args);
+    if (command == "verify") return art2part::runVerify(args);
+    if (command == "post") return art2part::runPost(args);
+    if (command == "urdf") return art2part::runUrdf(args);
     throw art2part::UsageError("unknown command '" + command + "'");
   } catch (const art2part::UsageError& e) {
     std::cerr << "art2part: " << e.what() << "\n" << kUsage;

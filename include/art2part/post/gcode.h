@@ -1,0 +1,38 @@
+// G-code for LinuxCNC 2.9 (rs274ngc) from a MachineProgram, and the tool table it needs.
+//
+// Each program: a header of comments (part, setup(s) and their fixtures, machine and kinematics, mode, tools), the
+// modal set-up `G21 G17 G40 G49 G80 G90 G94 G64 P..`, G54 set to zero and G92 cancelled, then the steps:
+//   retract     G53 G0 Z<retract_z>                       (machine Z of the gauge point)
+//   tool change M9 / M5 / T<n> M6 / G43 H<n> / S<rpm> M3 / M8
+//   rapid       G0 X Y Z A C                               (only the words that change)
+//   feed        G94 G1 X Y Z F<mm/min>                    when no rotary joint moves
+//               G93 G1 X Y Z A C F<1/min>                 when one does: inverse time, 1 / the move's minutes, the
+//                                                         minutes being max(tip length / feed, slowest joint at its
+//                                                         max velocity)
+// and M9 M5 M30 at the end. Lines are numbered N10, N20, ...; numbers are fixed-point (4 decimals: 0.1 um, 1e-4 deg).
+// The job program (program.ngc of the plan contract) runs every setup in order with `M0 (re-fixture: ...)` between
+// them; a setup program runs one setup alone.
+#pragma once
+
+#include <string>
+
+#include "art2part/post/machine_program.h"
+
+namespace art2part {
+
+// Every setup in order: the program.ngc of the plan contract.
+std::string jobProgramText(const MachineProgram& program);
+// One setup (index into program.setups), standalone: its own header, tool change and M30.
+std::string setupProgramText(const MachineProgram& program, int setup_index);
+
+enum class ToolTableUnits {
+  Millimetres,  // for LinuxCNC with a mm machine (LINEAR_UNITS = mm): the controller's own table
+  Inches,       // for the stand-alone rs274 interpreter, which reads tool tables in inches whatever the program
+};
+// LinuxCNC tool table: `T<n> P<n> Z<length> D<diameter> ;<id> <type>` a line.
+std::string toolTableText(const MachineProgram& program, ToolTableUnits units);
+
+// A number as G-code writes it: fixed point, `decimals` places, no "-0".
+std::string gcodeNumber(double value, int decimals = 4);
+
+}  // namespace art2part

@@ -1,0 +1,97 @@
+// Verification: any toolpath (ours or a third party's, through the toolpaths.csv + tools.json contract) simulated
+// against the part: gouges, collisions, what is left. A planner is never its own judge.
+//
+// The chain: the stock (a box with margins around the part, or a mesh) and the part dexelized on one tri-dexel lattice
+// (stock.h, mesh_dexels.h); the toolpath swept through it (sweep.h); the leftover measured (leftover.h); the remaining
+// stock contoured and coloured by its deviation when asked (stock_mesh.h). The report is plain data; reportJson gives
+// the CLI's JSON (`art2part verify`).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "art2part/geometry/mesh.h"
+#include "art2part/simulation/leftover.h"
+#include "art2part/simulation/stock.h"
+#include "art2part/simulation/sweep.h"
+#include "art2part/tooling/tool.h"
+#include "art2part/tooling/toolpath.h"
+
+namespace art2part {
+
+struct VerifyOptions {
+  double resolution = 0;       // mm, lattice spacing; 0 = automatic (about 1.5 M rays, at least 0.1 mm)
+  double tolerance = 0.01;     // mm: gouges and collisions deeper than this count
+  double stock_margin = 2.0;   // mm around the part's box, when no stock mesh is given
+  const Mesh* stock_mesh = nullptr;  // the raw stock instead of a box (the part is always inside it)
+  double step_fraction = 0.5;  // sub-step bound, of the resolution (sweep.h)
+  int threads = 0;             // 0 = the hardware's
+  int max_listed = 100;        // entries per list in the report (the totals count them all)
+  double tool_chord_mm = 0.001;  // how closely a bull mill's torus corner is followed
+};
+
+struct GougeRecord {
+  int point = 0;  // row of toolpaths.csv (0 = first data row): the move ending there
+  int op = 0, setup = 0;
+  std::string tool;
+  double depth_mm = 0;
+  Vec3 position = Vec3::Zero();  // the deepest removed point of the part
+  Vec3 tip = Vec3::Zero();       // the tool tip at that pose
+};
+
+struct CollisionRecord {
+  int point = 0, op = 0, setup = 0;
+  std::string tool;
+  CollisionKind kind = CollisionKind::Shank;
+  double depth_mm = 0;           // how far the material reaches into the shank, holder or (rapid) tool
+  Vec3 position = Vec3::Zero();  // the deepest point of material met
+  Vec3 tip = Vec3::Zero();
+};
+
+struct VerificationReport {
+  int gouges = 0;  // moves removing part material deeper than the tolerance
+  double worst_gouge_mm = 0;
+  std::vector<GougeRecord> gouge_list;  // deepest first, at most max_listed
+  int collisions = 0;                   // moves whose shank or holder meets material, or rapids through it
+  double worst_collision_mm = 0;
+  std::vector<CollisionRecord> collision_list;  // in path order, at most max_listed
+  double leftover_volume_mm3 = 0;
+  double leftover_max_mm = 0;
+  std::vector<LeftoverRegion> regions;  // largest first, at most max_listed
+  int region_count = 0;
+  std::vector<FaceCusp> faces;  // highest cusp first, at most max_listed
+  int face_count = 0;
+  // Figures.
+  double resolution_mm = 0, tolerance_mm = 0;
+  Vec3 spacing = Vec3::Zero();
+  std::int64_t dexels = 0;
+  int moves = 0;
+  std::int64_t poses = 0;
+  double seconds_sweep = 0, seconds_total = 0, moves_per_second = 0;
+  Box stock_box;
+  double stock_volume_mm3 = 0, removed_volume_mm3 = 0, remaining_volume_mm3 = 0, part_volume_mm3 = 0;
+
+  bool passed() const { return gouges == 0 && collisions == 0; }
+};
+
+// What verifyToolpath keeps for outputs beyond the report (the picture, the remaining stock's mesh).
+struct VerificationState {
+  Stock stock;
+  MeshDexels part;
+};
+
+// `triangle_face`: the face of each part triangle (for cusps per face; may be empty). Throws InputError for a tool id
+// the toolpath uses but `tools` lacks, a tool that cannot exist, an empty path, or a resolution that is too fine.
+VerificationReport verifyToolpath(const Mesh& part, const std::vector<int>& triangle_face, const Toolpath& path,
+                                  const std::vector<Tool>& tools, const VerifyOptions& options = {},
+                                  VerificationState* state = nullptr);
+
+// The lattice spacing `resolution = 0` stands for: about 1.5 M rays over the box, never finer than 0.1 mm.
+double automaticResolution(const Box& box);
+
+// The report as JSON text (indented): gouges, worst_gouge_mm, collisions, leftover_volume_mm3, leftover_max_mm,
+// passed, the lists and the figures.
+std::string reportJson(const VerificationReport& report);
+
+}  // namespace art2part

@@ -1,0 +1,71 @@
+// Internal to the post: the step-by-step builder of a MachineProgram that the 3+2 and 5-axis planners share.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "art2part/post/machine_program.h"
+
+namespace art2part::post_detail {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDegree = kPi / 180;
+
+// Consecutive toolpath points [begin, end).
+struct PointRun {
+  int begin = 0, end = 0;
+};
+
+// "toolpaths.csv line 19 (op 3, setup 1, tool 'ball6')" for point `row` (0-based).
+std::string describePoint(const Toolpath& path, int row);
+
+// The setup's points split where the tool changes.
+std::vector<PointRun> toolRuns(const Toolpath& path, PointRun setup_run);
+
+ToolPose poseOf(const CutterLocation& point);
+
+// Appends steps to the program's last setup, tracking where the joints are and which tool is in the spindle. Every
+// step's joints are checked against the machine's travel (a violation is a bug upstream: it throws).
+class ProgramBuilder {
+ public:
+  ProgramBuilder(MachineProgram& program, const Toolpath& path, std::map<std::string, int> tool_numbers);
+
+  const Machine& machine() const { return program_.machine; }
+  const PostOptions& options() const { return program_.options; }
+  const Toolpath& path() const { return path_; }
+  const JointPosition& current() const { return current_; }
+  const PostTool& toolOf(int row) const;  // the tool of toolpath point `row`
+  Placement placementFor(int row) const;  // the setup's fixture and the tool of point `row`
+
+  void beginSetup(int setup);
+  void retract(bool always = false);  // G53 G0 Z up to the safe height, unless there (or always)
+  void changeTool(int tool_number);                     // (call retract() first)
+  void positionRotaries(const JointPosition& target);  // up to the safe height, then the rotaries alone
+  // To `target` from above: rotaries (at the safe height), X Y, then Z down (rapid, or at the plunge feed).
+  void approach(const JointPosition& target, MoveKind move, int row);
+  void moveTo(ProgramStep step);  // a Move; dropped when the joints do not change
+  void note(const std::string& comment);  // a comment printed before the next step
+  double feedFor(int from_row, int to_row) const;  // the tool's feed, or its plunge feed down the axis
+
+ private:
+  SetupProgram& setup() { return program_.setups.back(); }
+  void append(ProgramStep step);
+  JointPosition atSafeHeight(JointPosition joints) const;
+
+  MachineProgram& program_;
+  const Toolpath& path_;
+  std::map<std::string, int> tool_numbers_;
+  JointPosition current_;
+  int tool_ = 0;
+  std::string note_;
+};
+
+// The planners: append the steps of one setup's points (retracts, tool changes, approaches and moves).
+void planThreePlusTwo(ProgramBuilder& builder, PointRun setup_run);
+void planFiveAxis(ProgramBuilder& builder, PointRun setup_run);
+
+// Largest angle (rad) between the tool axis of a point in the run and that of its first point, and the point.
+double axisSpread(const Toolpath& path, PointRun run, int* widest_row = nullptr);
+
+}  // namespace art2part::post_detail

@@ -1,0 +1,498 @@
+// The minimum cover, part 2: the exact branch and bound on the cyclic core. The objective is
+// lexicographic: fewest candidates, then (with the bonus) most bonus weight among the covers of that size.
+//
+// Depth first, branching on the uncovered element with the fewest allowed coverers; later branches of a node exclude
+// the candidates of the earlier ones, so the subtrees partition the covers, and a branch dominated by an earlier one
+// (covers no more, earns no more) is skipped. The size bound is the larger of a greedy packing (uncovered elements
+// with pairwise disjoint coverer sets) and a dual solution of the covering LP. The bonus bound counts the most the
+// remaining slots can earn. A node is tight when its packing fills every slot: then each slot takes a candidate of
+// its own packed element, which narrows the candidates (and propagates through elements that only one packed
+// element's candidates cover), gives a stronger bonus bound (the LP dual over the packed elements' choice sets), and
+// passes on to the children, which skip their own bounds.
+#include <algorithm>
+#include <chrono>
+#include <climits>
+#include <cmath>
+#include <functional>
+
+#include "minimum_cover_internal.h"
+
+namespace art2part::cover {
+
+namespace {
+
+bool betterBonus(double bonus, double best) { return bonus > best + 1e-9 * std::max(1.0, std::abs(best)); }
+
+class BranchAndBound {
+ public:
+  BranchAndBound(const CoreProblem& core, bool use_bonus, double time_limit_s)
+      : core_(core),
+        use_bonus_(use_bonus),
+        cw_(core.coverers.wordsPerRow()),
+        ew_(core.covers.wordsPerRow()),
+        bw_(core.earns.wordsPerRow()) {
+    if (std::isfinite(time_limit_s)) {
+      has_deadline_ = true;
+      deadline_ = std::chrono::steady_clock::now() +
+                  std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                      std::chrono::duration<double>(time_limit_s));
+    }
+    if (use_bonus_) findDominators();
+    effective_.assign(cw_, 0);
+    row_count_.assign(core.candidates, 0);
+    marginal_.assign(core.candidates, 0);
+    slack_.assign(core.candidates, 0);
+    used_.assign(cw_, 0);
+    relevant_.assign(cw_, 0);
+    items_.assign(bw_, 0);
+    restricted_.assign(cw_, 0);
+    if (use_bonus_) {
+      item_earners_ = core.earns.transposed();
+      items_by_weight_.resize(core.bonus_items);
+      for (int b = 0; b < core.bonus_items; ++b) items_by_weight_[b] = b;
+      std::stable_sort(items_by_weight_.begin(), items_by_weight_.end(),
+                       [&](int a, int b) { return core.weight[a] > core.weight[b]; });
+      set_of_.assign(core.candidates, -1);
+      alpha_of_.assign(core.candidates, 0);
+    }
+  }
+
+  CoreSolution run(const SearchStart& start) {
+    best_ = start.chosen;
+    best_size_ = start.size;
+    best_bonus_ = use_bonus_ ? start.bonus : 0;
+    size_is_minimal_ = start.size_is_minimal;
+    const int depths = best_size_ + 2;
+    uncovered_.assign(static_cast<std::size_t>(depths) * ew_, 0);
+    allowed_.assign(static_cast<std::size_t>(depths) * cw_, 0);
+    earned_.assign(static_cast<std::size_t>(depths) * bw_, 0);
+    branches_.resize(depths);
+    packings_.assign(depths, {});
+    for (int e = 0; e < core_.elements; ++e) setBit(uncovered(0), e);
+    for (int c = 0; c < core_.candidates; ++c) setBit(allowed(0), c);
+    search(0, 0.0);
+    CoreSolution out;
+    out.chosen = best_;
+    std::sort(out.chosen.begin(), out.chosen.end());
+    out.bonus = coreBonus(core_, out.chosen);
+    out.complete = !timed_out_;
+    out.improved = improved_;
+    out.nodes = nodes_;
+    return out;
+  }
+
+ private:
+  struct Branch {
+    int candidate, covered;
+    double bonus;
+    bool dominated;
+  };
+
+  Word* uncovered(int depth) { return uncovered_.data() + static_cast<std::size_t>(depth) * ew_; }
+  Word* allowed(int depth) { return allowed_.data() + static_cast<std::size_t>(depth) * cw_; }
+  Word* earned(int depth) { return earned_.data() + static_cast<std::size_t>(depth) * bw_; }
+
+  bool outOfTime() {
+    if (timed_out_) return true;
+    if (has_deadline_ && (nodes_ & 1023) == 1 && std::chrono::steady_clock::now() > deadline_) timed_out_ = true;
+    return timed_out_;
+  }
+
+  void record(int size, double bonus) {
+    if (size < best_size_ || (use_bonus_ && size == best_size_ && betterBonus(bonus, best_bonus_))) {
+      best_.assign(stack_.begin(), stack_.end());
+      improved_ = true;
+      best_size_ = size;
+      best_bonus_ = bonus;
+    }
+  }
+
+  // The uncovered elements, fewest coverers in A first: the order of the packing and of the dual ascent.
+  void orderUncovered(const Word* U, const Word* A) {
+    order_.clear();
+    forEachBit(U, ew_, [&](int e) { order_.emplace_back(popcountAnd(core_.coverers.row(e), A, cw_), e); });
+    std::sort(order_.begin(), order_.end());
+  }
+
+  // Greedy packing of uncovered elements whose allowed coverer sets are pairwise disjoint: each needs its own
+  // candidate. Stops once it exceeds `enough`.
+  int packingBound(const Word* A, int enough, std::vector<int>& packed_) {
+    std::fill(used_.begin(), used_.end(), 0);
+    packed_.clear();
+    int packed = 0;
+    for (const auto& [count, e] : order_) {
+      const Word* row = core_.coverers.row(e);
+      bool disjoint = true;
+      for (int w = 0; w < cw_ && disjoint; ++w) disjoint = (row[w] & A[w] & used_[w]) == 0;
+      if (!disjoint) continue;
+      for (int w = 0; w < cw_; ++w) used_[w] |= row[w] & A[w];
+      packed_.push_back(e);
+      if (++packed > enough) break;
+    }
+    return packed;
+  }
+
+  // A feasible solution of the dual of the covering LP (a weight y_e per uncovered element, at most 1 summed over
+  // the elements of any candidate): its total bounds the cover size from below. Start from y_e = 1 / (most
+  // uncovered elements any coverer of e covers), which the largest row bound |U| / max|c| is the uniform case of,
+  // then raise each y_e, fewest coverers first, by the least slack among its coverers. Needs row_count_.
+  double dualBound(const Word* A) {
+    double total = 0;
+    forEachBit(relevant_.data(), cw_, [&](int c) { slack_[c] = 1.0; });
+    for (const auto& [count, e] : order_) {
+      const Word* row = core_.coverers.row(e);
+      int most = 0;
+      for (int w = 0; w < cw_; ++w)
+        for (Word bits = row[w] & A[w]; bits; bits &= bits - 1)
+          most = std::max(most, row_count_[w * 64 + __builtin_ctzll(bits)]);
+      const double y = 1.0 / most;
+      total += y;
+      for (int w = 0; w < cw_; ++w)
+        for (Word bits = row[w] & A[w]; bits; bits &= bits - 1) slack_[w * 64 + __builtin_ctzll(bits)] -= y;
+    }
+    for (const auto& [count, e] : order_) {
+      const Word* row = core_.coverers.row(e);
+      double raise = 1.0;
+      for (int w = 0; w < cw_; ++w)
+        for (Word bits = row[w] & A[w]; bits; bits &= bits - 1)
+          raise = std::min(raise, slack_[w * 64 + __builtin_ctzll(bits)]);
+      if (raise <= 1e-12) continue;
+      total += raise;
+      for (int w = 0; w < cw_; ++w)
+        for (Word bits = row[w] & A[w]; bits; bits &= bits - 1) slack_[w * 64 + __builtin_ctzll(bits)] -= raise;
+    }
+    return total;
+  }
+
+  // Upper bound on the bonus the next `slots` candidates can add, from the candidates in `relevant_`. The largest
+  // `slots` marginal bonuses; no more than all the items they could still earn together; and, as each packed element
+  // needs a candidate of its own, the best marginal among each packed element's coverers plus the largest marginals
+  // for the slots left over.
+  double bonusBound(int slots, const Word* A, const Word* E, const std::vector<int>& packed_) {
+    top_.clear();
+    std::fill(items_.begin(), items_.end(), 0);
+    forEachBit(relevant_.data(), cw_, [&](int c) {
+      top_.push_back(marginal_[c]);
+      const Word* earns = core_.earns.row(c);
+      for (int w = 0; w < bw_; ++w) items_[w] |= earns[w];
+    });
+    const int k = std::min<int>(slots, static_cast<int>(top_.size()));
+    std::partial_sort(top_.begin(), top_.begin() + k, top_.end(), std::greater<double>());
+    double sum = 0;
+    for (int i = 0; i < k; ++i) sum += top_[i];
+    const int packed = std::min<int>(slots, static_cast<int>(packed_.size()));
+    double by_packing = 0;
+    for (int i = 0; i < packed; ++i) {
+      double most = 0;
+      const Word* row = core_.coverers.row(packed_[i]);
+      for (int w = 0; w < cw_; ++w)
+        for (Word bits = row[w] & A[w]; bits; bits &= bits - 1)
+          most = std::max(most, marginal_[w * 64 + __builtin_ctzll(bits)]);
+      by_packing += most;
+    }
+    for (int i = 0; i < k - packed; ++i) by_packing += top_[i];
+    return std::min({sum, by_packing, freshBonus(core_, items_.data(), E)});
+  }
+
+  // When the packing fills every slot, each candidate still to choose covers exactly one packed element, one per
+  // packed element: the others can go. Then an uncovered element whose coverers all serve the same packed element
+  // narrows that element's choice to them, until nothing changes. Returns the candidates left in restricted_, or
+  // nullptr when some uncovered element has none of them. (The packing was made over the size bound's candidates,
+  // but it holds over all of A: a candidate left out there covers no more than its dominator, which is in.)
+  const Word* tightCandidates(const Word* U, const Word* A, const std::vector<int>& packed_) {
+    const int k = static_cast<int>(packed_.size());
+    choices_.resize(static_cast<std::size_t>(k) * cw_);
+    auto choice = [&](int i) { return choices_.data() + static_cast<std::size_t>(i) * cw_; };
+    for (int i = 0; i < k; ++i) {
+      const Word* row = core_.coverers.row(packed_[i]);
+      for (int w = 0; w < cw_; ++w) choice(i)[w] = row[w] & A[w];
+    }
+    for (bool changed = true; changed;) {
+      changed = false;
+      bool dead = false;
+      forEachBit(U, ew_, [&](int e) {
+        if (dead) return;
+        const Word* row = core_.coverers.row(e);
+        int only = -1, count = 0;
+        for (int i = 0; i < k && count < 2; ++i)
+          if (intersects(row, choice(i), cw_)) only = i, ++count;
+        if (count == 0) dead = true;
+        if (count != 1) return;
+        Word* c = choice(only);
+        for (int w = 0; w < cw_; ++w) {
+          changed = changed || (c[w] & ~row[w]) != 0;
+          c[w] &= row[w];
+        }
+      });
+      if (dead) return nullptr;
+    }
+    std::fill(restricted_.begin(), restricted_.end(), 0);
+    for (int i = 0; i < k; ++i)
+      for (int w = 0; w < cw_; ++w) restricted_[w] |= choice(i)[w];
+    return restricted_.data();
+  }
+
+  // At a tight node the candidates to choose are one from each packed element's choice set (choices_), and the
+  // bonus they add is bounded by the dual of the linear relaxation: for any split of each fresh item's weight into a
+  // part alpha counted per candidate and the rest counted once, sum(w - alpha) over the items they could earn plus,
+  // per choice set, the largest alpha total of one candidate. alpha = w everywhere is the by-packing bound, alpha = 0
+  // the union bound; here each item, heaviest first, goes to alpha = w when that lowers the bound.
+  double tightBonusBound(const Word* E, const std::vector<int>& packed_) {
+    const int k = static_cast<int>(packed_.size());
+    std::fill(restricted_.begin(), restricted_.end(), 0);
+    for (int i = 0; i < k; ++i) {
+      const Word* choice = choices_.data() + static_cast<std::size_t>(i) * cw_;
+      forEachBit(choice, cw_, [&](int c) {
+        set_of_[c] = i;
+        alpha_of_[c] = 0;
+      });
+      for (int w = 0; w < cw_; ++w) restricted_[w] |= choice[w];
+    }
+    set_best_.assign(k, 0.0);
+    set_raise_.assign(k, -1.0);
+    double bound = 0;
+    for (int b : items_by_weight_) {
+      if (testBit(E, b)) continue;
+      const Word* earners = item_earners_.row(b);
+      if (!intersects(earners, restricted_.data(), cw_)) continue;
+      const double w = core_.weight[b];
+      bound += w;
+      // Raising alpha_b to w: each choice set's best may grow.
+      touched_.clear();
+      for (int x = 0; x < cw_; ++x)
+        for (Word bits = earners[x] & restricted_[x]; bits; bits &= bits - 1) {
+          const int c = x * 64 + __builtin_ctzll(bits), i = set_of_[c];
+          if (set_raise_[i] < 0) touched_.push_back(i);
+          set_raise_[i] = std::max(set_raise_[i], alpha_of_[c] + w);
+        }
+      double increase = 0;
+      for (int i : touched_) increase += std::max(0.0, set_raise_[i] - set_best_[i]);
+      if (increase < w) {
+        bound -= w - increase;
+        for (int i : touched_) set_best_[i] = std::max(set_best_[i], set_raise_[i]);
+        for (int x = 0; x < cw_; ++x)
+          for (Word bits = earners[x] & restricted_[x]; bits; bits &= bits - 1)
+            alpha_of_[x * 64 + __builtin_ctzll(bits)] += w;
+      }
+      for (int i : touched_) set_raise_[i] = -1.0;
+    }
+    return bound;
+  }
+
+  // With the bonus the core keeps candidates that cover less than another but earn other items. For the size bound
+  // they do not count while a candidate covering all they cover is allowed: swapping gives a cover no larger.
+  // dominator_[c]: one candidate covering every core element c covers, itself dominated by none; -1 if none.
+  void findDominators() {
+    dominator_.assign(core_.candidates, -1);
+    std::vector<int> order(core_.candidates), count(core_.candidates);
+    for (int c = 0; c < core_.candidates; ++c) {
+      order[c] = c;
+      count[c] = popcount(core_.covers.row(c), ew_);
+    }
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return count[a] > count[b]; });
+    std::vector<int> maximal;
+    for (int c : order) {
+      for (int d : maximal)
+        if (isSubset(core_.covers.row(c), core_.covers.row(d), ew_)) {
+          dominator_[c] = d;
+          break;
+        }
+      if (dominator_[c] < 0) maximal.push_back(c);
+    }
+  }
+
+  // The allowed candidates that count for the size bound.
+  const Word* effectiveCandidates(const Word* A) {
+    if (!use_bonus_) return A;
+    std::copy(A, A + cw_, effective_.begin());
+    forEachBit(A, cw_, [&](int c) {
+      if (dominator_[c] >= 0 && testBit(A, dominator_[c])) clearBit(effective_.data(), c);
+    });
+    return effective_.data();
+  }
+
+  // A branch is not worth taking when an earlier one covers every uncovered element it covers and earns every
+  // fresh item it earns: swapping it for the earlier one in any cover of its subtree gives a cover, no larger and
+  // earning no less, that an earlier subtree holds (the earliest branch candidate in it decides which).
+  void skipDominated(std::vector<Branch>& branches, const Word* U, const Word* E) {
+    for (std::size_t i = 1; i < branches.size(); ++i) {
+      const Word* ci = core_.covers.row(branches[i].candidate);
+      const Word* bi = core_.earns.row(branches[i].candidate);
+      for (std::size_t j = 0; j < i && !branches[i].dominated; ++j) {
+        if (branches[j].dominated) continue;
+        const Word* cj = core_.covers.row(branches[j].candidate);
+        bool inside = true;
+        for (int w = 0; w < ew_ && inside; ++w) inside = (ci[w] & U[w] & ~cj[w]) == 0;
+        if (use_bonus_) {
+          const Word* bj = core_.earns.row(branches[j].candidate);
+          for (int w = 0; w < bw_ && inside; ++w) inside = (bi[w] & ~E[w] & ~bj[w]) == 0;
+        }
+        branches[i].dominated = inside;
+      }
+    }
+  }
+
+  // One node: the covers that extend the chosen stack_ with candidates from A, covering U.
+  void search(int depth, double bonus) {
+    ++nodes_;
+    if (outOfTime()) return;
+    const Word* U = uncovered(depth);
+    const Word* A = allowed(depth);  // narrowed at tight nodes
+    const Word* E = earned(depth);
+    const int left = popcount(U, ew_);
+    if (left == 0) {
+      record(depth, bonus);
+      return;
+    }
+    const int slots = best_size_ - depth;  // candidates that may still be added without a worse size
+    if (slots <= 0) return;
+    std::vector<int>& packed = packings_[depth];
+
+    // A packing that fills every slot, inherited from a tight parent, keeps the node tight: skip the bounds.
+    int lower = slots, branch_element = -1;
+    const bool inherited = static_cast<int>(packed.size()) == slots;
+    if (!inherited) {
+      branch_element = boundNode(U, A, slots, packed, lower);
+      if (branch_element < 0 || lower > slots) return;
+    }
+    const bool tight = static_cast<int>(packed.size()) == slots;
+    if (lower == slots || size_is_minimal_) {  // no smaller cover below: only more bonus at the same size counts
+      if (!use_bonus_) return;
+      if (tight) {
+        A = tightCandidates(U, A, packed);
+        if (!A) return;
+        std::copy(A, A + cw_, relevant_.begin());
+        branch_element = fewestCoverers(U, A);
+        if (!betterBonus(bonus + tightBonusBound(E, packed), best_bonus_)) return;
+      }
+      forEachBit(relevant_.data(), cw_, [&](int c) { marginal_[c] = freshBonus(core_, core_.earns.row(c), E); });
+      if (!betterBonus(bonus + bonusBound(slots, A, E, packed), best_bonus_)) return;
+    }
+
+    std::vector<Branch>& branches = branches_[depth];
+    branches.clear();
+    forEachBit(core_.coverers.row(branch_element), cw_, [&](int c) {
+      if (testBit(A, c))
+        branches.push_back({c, popcountAnd(core_.covers.row(c), U, ew_),
+                            use_bonus_ ? freshBonus(core_, core_.earns.row(c), E) : 0.0, false});
+    });
+    // Most newly covered first; in the bonus search most bonus first (good covers early prune most).
+    const bool bonus_first = use_bonus_;
+    std::sort(branches.begin(), branches.end(), [bonus_first](const Branch& a, const Branch& b) {
+      if (bonus_first && a.bonus != b.bonus) return a.bonus > b.bonus;
+      if (a.covered != b.covered) return a.covered > b.covered;
+      if (a.bonus != b.bonus) return a.bonus > b.bonus;
+      return a.candidate < b.candidate;
+    });
+    skipDominated(branches, U, E);
+
+    if (slots == 1) {  // one candidate must cover everything left: the first such is the best (sorted by bonus)
+      for (const Branch& b : branches)
+        if (b.covered == left && !b.dominated) {
+          stack_.push_back(b.candidate);
+          record(depth + 1, bonus + b.bonus);
+          stack_.pop_back();
+          return;
+        }
+      return;
+    }
+
+    Word* U2 = uncovered(depth + 1);
+    Word* A2 = allowed(depth + 1);
+    Word* E2 = earned(depth + 1);
+    std::copy(A, A + cw_, A2);
+    for (const Branch& b : branches) {
+      // Later branches exclude the earlier candidates of this element: the subtrees partition the covers.
+      clearBit(A2, b.candidate);
+      if (b.dominated) continue;
+      const Word* covers = core_.covers.row(b.candidate);
+      for (int w = 0; w < ew_; ++w) U2[w] = U[w] & ~covers[w];
+      const Word* earns = core_.earns.row(b.candidate);
+      for (int w = 0; w < bw_; ++w) E2[w] = E[w] | earns[w];
+      // Tight: the candidate serves exactly one packed element; the others still fill the child's slots.
+      std::vector<int>& child_packed = packings_[depth + 1];
+      child_packed.clear();
+      if (tight)
+        for (int p : packed)
+          if (!testBit(covers, p)) child_packed.push_back(p);
+      stack_.push_back(b.candidate);
+      search(depth + 1, bonus + b.bonus);
+      stack_.pop_back();
+      if (timed_out_) return;
+      if (lower > best_size_ - depth) return;  // the incumbent improved past what this node can offer
+      if (lower == best_size_ - depth && !use_bonus_) return;
+    }
+  }
+
+  // The size bound of a node: max(packing, dual) over the candidates that count for it (packing into `packed`).
+  // Returns the uncovered element with the fewest allowed coverers, or -1 when one has none; fills relevant_ (the
+  // allowed candidates covering something uncovered) and their row_count_.
+  int boundNode(const Word* U, const Word* A, int slots, std::vector<int>& packed, int& lower) {
+    int branch_element = -1, fewest = INT_MAX;
+    std::fill(relevant_.begin(), relevant_.end(), 0);
+    bool dead_end = false;
+    forEachBit(U, ew_, [&](int e) {
+      if (dead_end) return;
+      const Word* row = core_.coverers.row(e);
+      const int count = popcountAnd(row, A, cw_);
+      if (count == 0) dead_end = true;
+      if (count < fewest) {
+        fewest = count;
+        branch_element = e;
+      }
+      for (int w = 0; w < cw_; ++w) relevant_[w] |= row[w] & A[w];
+    });
+    if (dead_end) return -1;
+    forEachBit(relevant_.data(), cw_, [&](int c) { row_count_[c] = popcountAnd(core_.covers.row(c), U, ew_); });
+    const Word* sized = effectiveCandidates(A);
+    orderUncovered(U, sized);
+    lower = packingBound(sized, slots, packed);
+    if (lower < slots) lower = std::max(lower, static_cast<int>(std::ceil(dualBound(sized) - 1e-9)));
+    return branch_element;
+  }
+
+  int fewestCoverers(const Word* U, const Word* A) {
+    int element = -1, fewest = INT_MAX;
+    forEachBit(U, ew_, [&](int e) {
+      const int count = popcountAnd(core_.coverers.row(e), A, cw_);
+      if (count < fewest) {
+        fewest = count;
+        element = e;
+      }
+    });
+    return element;
+  }
+
+  const CoreProblem& core_;
+  const bool use_bonus_;
+  const int cw_, ew_, bw_;
+  bool has_deadline_ = false, timed_out_ = false, improved_ = false, size_is_minimal_ = false;
+  std::chrono::steady_clock::time_point deadline_;
+  long long nodes_ = 0;
+
+  std::vector<std::pair<int, int>> order_;  // (coverers, element), scratch
+  std::vector<Word> uncovered_, allowed_, earned_;  // per depth
+  std::vector<std::vector<Branch>> branches_;       // per depth
+  std::vector<int> stack_;
+  // Scratch, valid within one node until it recurses.
+  std::vector<std::vector<int>> packings_;         // per depth: the packing of the node (inherited when tight)
+  std::vector<int> row_count_, dominator_;
+  BitMatrix item_earners_;  // bonus item x candidate
+  std::vector<int> items_by_weight_, set_of_, touched_;
+  std::vector<double> alpha_of_, set_best_, set_raise_;
+  std::vector<double> marginal_, top_, slack_;
+  std::vector<Word> used_, relevant_, items_, effective_, restricted_, choices_;
+
+  std::vector<int> best_;
+  int best_size_ = 0;
+  double best_bonus_ = 0;
+};
+
+}  // namespace
+
+CoreSolution branchAndBound(const CoreProblem& core, const SearchStart& start, bool use_bonus, double time_limit_s) {
+  BranchAndBound search(core, use_bonus, time_limit_s);
+  return search.run(start);
+}
+
+}  // namespace art2part::cover

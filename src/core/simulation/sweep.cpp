@@ -1,0 +1,312 @@
+#include "art2part/simulation/sweep.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <thread>
+
+namespace art2part {
+
+const char* collisionKindName(CollisionKind kind) {
+  switch (kind) {
+    case CollisionKind::Shank: return "shank";
+    case CollisionKind::Holder: return "holder";
+    case CollisionKind::Rapid: return "rapid";
+  }
+  return "?";
+}
+
+namespace {
+
+constexpr int kRowBlock = 4;       // rows per block handed out to the threads in turn
+constexpr int kGougeSamples = 8;   // points measured between the ends of a long removed span
+constexpr double kInfinity = 1e300;
+
+// First and last coordinate of material along every ray, by family: most rays a pose's box meets are rejected on
+// these without touching their span lists.
+using Extents = std::array<std::vector<Span>, 3>;
+
+Span extentOf(const SpanList& spans) {
+  return spans.empty() ? Span{kInfinity, -kInfinity} : Span{spans.front().lo, spans.back().hi};
+}
+
+Extents stockExtents(const Stock& stock) {
+  Extents e;
+  for (int axis = 0; axis < 3; ++axis)
+    for (const SpanList& spans : stock.dexels[axis]) e[axis].push_back(extentOf(spans));
+  return e;
+}
+
+Extents solidExtents(const MeshDexels& solid) {
+  Extents e;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int ray = 0; ray < solid.lattice().rayCount(axis); ++ray) {
+      const bool empty = solid.begin(axis, ray) == solid.end(axis, ray);
+      e[axis].push_back(empty ? Span{kInfinity, -kInfinity}
+                              : Span{solid.begin(axis, ray)->lo, (solid.end(axis, ray) - 1)->hi});
+    }
+  return e;
+}
+
+void mergeFinding(MoveFinding& into, const MoveFinding& from) {
+  if (from.gouge_mm > into.gouge_mm) {
+    into.gouge_mm = from.gouge_mm;
+    into.gouge_point = from.gouge_point;
+    into.gouge_tip = from.gouge_tip;
+  }
+  if (from.collision_mm > into.collision_mm) {
+    into.collision_mm = from.collision_mm;
+    into.collision = from.collision;
+    into.collision_point = from.collision_point;
+    into.collision_tip = from.collision_tip;
+  }
+}
+
+// Where the tip was when the tool, sliding along the ray through the pose's slide, first reached coordinate t (its
+// span at the pose being `span`): its leading end meets t then.
+Vec3 tipWhenReached(const SweepPose& pose, Span span, int axis, double t) {
+  Vec3 tip = pose.pose.tip;
+  if (pose.slide > 0.0) tip[axis] -= std::clamp(span.hi - t, 0.0, pose.slide);
+  if (pose.slide < 0.0) tip[axis] += std::clamp(t - span.lo, 0.0, -pose.slide);
+  return tip;
+}
+
+struct Ray {
+  int axis, index;
+  double u, v;  // its two lattice coordinates
+
+  Vec3 origin() const {  // 0 along it
+    Vec3 o = Vec3::Zero();
+    o[DexelLattice::uAxis(axis)] = u;
+    o[DexelLattice::vAxis(axis)] = v;
+    return o;
+  }
+};
+
+// One thread's share of the sweep: the rows it owns in every family.
+class Worker {
+ public:
+  Worker(Stock& stock, Extents& extents, const MeshDexels& part, const Extents& part_extents,
+         const PartDistance& distance, const SweepOptions& options, int thread, int threads)
+      : stock_(stock), extents_(extents), part_(part), part_extents_(part_extents), distance_(distance),
+        options_(options), thread_(thread), threads_(threads) {}
+
+  void run(const Toolpath& path, const std::vector<const ToolSolid*>& tools) {
+    for (const StraightRun& run : straightRuns(path)) sweepRun(path, *tools[run.last], run);
+  }
+
+  const std::map<int, MoveFinding>& findings() const { return findings_; }
+  std::int64_t poses() const { return poses_; }
+
+ private:
+  bool owns(int row) const { return (row / kRowBlock) % threads_ == thread_; }
+
+  void sweepRun(const Toolpath& path, const ToolSolid& tool, const StraightRun& run) {
+    const CutterLocation& end = path[run.last];
+    const bool rapid = end.move == MoveKind::Rapid;
+    const ToolPose to{end.tip, end.axis};
+    if (run.placed) {
+      finding_ = MoveFinding();
+      for (int axis = 0; axis < 3; ++axis) cutPose(tool, {to, 0.0, 0.0}, rapid, axis);
+      keep(finding_, run.first);
+      ++poses_;
+      return;
+    }
+    const ToolPose from{path[run.first - 1].tip, path[run.first - 1].axis};
+    const double step = options_.step_fraction * stock_.lattice.minSpacing();
+    std::size_t most = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+      const std::vector<SweepPose> poses = movePoses(from, to, tool, stock_.lattice.box, step, axis);
+      for (std::size_t s = 0; s < poses.size(); ++s) {
+        finding_ = MoveFinding();
+        cutPose(tool, poses[s], rapid, axis);
+        if (finding_.gouge_mm > 0 || finding_.collision_mm > 0)
+          attribute(path, run, static_cast<double>(s) / poses.size(), static_cast<double>(s + 1) / poses.size());
+      }
+      most = std::max(most, poses.size());
+    }
+    poses_ += static_cast<std::int64_t>(most);
+  }
+
+  // Hands what one pose found to the moves of the run whose stretch holds each point found (within the part of the
+  // run, fractions f0..f1, that the pose stands for).
+  void attribute(const Toolpath& path, const StraightRun& run, double f0, double f1) {
+    const Vec3 start = path[run.first - 1].tip, line = path[run.last].tip - start;
+    auto moveAt = [&](const Vec3& point) {
+      const double length = line.squaredNorm();
+      const double f = length > 0.0 ? std::clamp((point - start).dot(line) / length, f0, f1) : f1;
+      int lo = run.first, hi = run.last;  // the first move ending at or beyond f (ends advance along the line)
+      while (lo < hi) {
+        const int mid = (lo + hi) / 2;
+        if ((path[mid].tip - start).dot(line) < f * length) lo = mid + 1;
+        else hi = mid;
+      }
+      return lo;
+    };
+    const MoveFinding found = finding_;
+    MoveFinding gouge, collision;
+    gouge.gouge_mm = found.gouge_mm;
+    gouge.gouge_point = found.gouge_point;
+    gouge.gouge_tip = found.gouge_tip;
+    collision = found;
+    collision.gouge_mm = 0;
+    if (gouge.gouge_mm > 0) keep(gouge, moveAt(found.gouge_tip));
+    if (collision.collision_mm > 0) keep(collision, moveAt(found.collision_tip));
+  }
+
+  void keep(const MoveFinding& found, int move) {
+    if (found.gouge_mm > 0 || found.collision_mm > 0) mergeFinding(findings_[move], found);
+  }
+
+  void cutPose(const ToolSolid& tool, const SweepPose& pose, bool rapid, int axis) {
+    for (const ToolPiece& piece : tool.pieces) {
+      cutPiece(piece, pose, rapid, axis);
+      if (pose.rise > 0.0) cutPiece(risePiece(piece, pose.rise), pose, rapid, axis);
+    }
+  }
+
+  void cutPiece(const ToolPiece& piece, const SweepPose& pose, bool rapid, int axis) {
+    Box box = pieceBox(piece, pose.pose);
+    box.min[axis] -= std::max(pose.slide, 0.0);
+    box.max[axis] -= std::min(pose.slide, 0.0);
+    box.min = box.min.cwiseMax(stock_.lattice.box.min);
+    box.max = box.max.cwiseMin(stock_.lattice.box.max);
+    if (!box.empty()) cutFamily(piece, pose, rapid, axis, box);
+  }
+
+  void cutFamily(const ToolPiece& piece, const SweepPose& pose, bool rapid, int axis, const Box& box) {
+    const DexelLattice& lattice = stock_.lattice;
+    const int u = DexelLattice::uAxis(axis), v = DexelLattice::vAxis(axis);
+    const auto us = lattice.indexRange(u, box.min[u], box.max[u]);
+    const auto vs = lattice.indexRange(v, box.min[v], box.max[v]);
+    const PieceOnRays on_rays(piece, pose.pose, axis);
+    for (int iv = vs[0]; iv <= vs[1]; ++iv) {
+      if (!owns(iv)) continue;
+      const double cv = lattice.coordinate(v, iv);
+      for (int iu = us[0]; iu <= us[1]; ++iu) {
+        const int ray = lattice.rayIndex(axis, iu, iv);
+        const Span material = extents_[axis][ray];
+        if (material.lo > box.max[axis] || material.hi < box.min[axis]) continue;
+        const double cu = lattice.coordinate(u, iu);
+        Span span;
+        if (!on_rays.span(cu, cv, span)) continue;
+        const Span swept{span.lo - std::max(pose.slide, 0.0), span.hi - std::min(pose.slide, 0.0)};
+        if (swept.hi <= material.lo || swept.lo >= material.hi) continue;
+        const Ray r{axis, ray, cu, cv};
+        if (piece.zone != ToolZone::Flutes || rapid) checkCollision(piece, pose, rapid, r, span, swept);
+        if (piece.zone == ToolZone::Flutes) cut(pose, r, span, swept);
+      }
+    }
+  }
+
+  // Material in the swept span reaches into the piece as deep as the deepest point of the span at the pose that the
+  // slide carries it to.
+  void checkCollision(const ToolPiece& piece, const SweepPose& pose, bool rapid, const Ray& r, Span span,
+                      Span swept) {
+    for (const Span& s : stock_.ray(r.axis, r.index)) {
+      if (s.lo >= swept.hi) break;
+      const Span overlap{std::max(s.lo, swept.lo), std::min(s.hi, swept.hi)};
+      if (overlap.hi <= overlap.lo) continue;
+      const Span at_pose{std::max(overlap.lo + std::min(pose.slide, 0.0), span.lo),
+                         std::min(overlap.hi + std::max(pose.slide, 0.0), span.hi)};
+      if (at_pose.hi <= at_pose.lo) continue;
+      Vec3 where;
+      const double depth = deepestOnSpan(piece, pose.pose, r.origin(), r.axis, at_pose, &where);
+      if (depth <= options_.tolerance || depth <= finding_.collision_mm) continue;
+      finding_.collision_mm = depth;
+      finding_.collision = rapid ? CollisionKind::Rapid
+                                 : (piece.zone == ToolZone::Holder ? CollisionKind::Holder : CollisionKind::Shank);
+      finding_.collision_point = where;
+      finding_.collision_tip = tipWhenReached(pose, span, r.axis, 0.5 * (overlap.lo + overlap.hi));
+    }
+  }
+
+  void cut(const SweepPose& pose, const Ray& r, Span span, Span swept) {
+    removed_.clear();
+    SpanList& spans = stock_.ray(r.axis, r.index);
+    subtractSpan(spans, swept, &removed_);
+    if (removed_.empty()) return;
+    extents_[r.axis][r.index] = extentOf(spans);
+    const Span part = part_extents_[r.axis][r.index];
+    if (removed_.front().lo >= part.hi || removed_.back().hi <= part.lo) return;
+    for (const Span& removed : removed_)
+      for (const SolidSpan* p = part_.begin(r.axis, r.index); p != part_.end(r.axis, r.index); ++p) {
+        if (p->lo >= removed.hi) break;
+        const Span inside{std::max(removed.lo, p->lo), std::min(removed.hi, p->hi)};
+        if (inside.hi > inside.lo) measureGouge(pose, r, span, inside, {p->lo, p->hi});
+      }
+  }
+
+  // The deepest point of part material removed along [g.lo, g.hi] (inside the part's span p). Skipped when even the
+  // distance to the span's own ends cannot beat what is already known.
+  void measureGouge(const SweepPose& pose, const Ray& r, Span span, Span g, Span p) {
+    const double middle = 0.5 * (p.lo + p.hi);
+    const double bound = middle >= g.lo && middle <= g.hi ? 0.5 * p.length()
+                                                            : (middle < g.lo ? p.hi - g.lo : g.hi - p.lo);
+    const double floor = std::max(options_.tolerance, finding_.gouge_mm);
+    if (bound <= floor) return;
+    const int between = g.length() > stock_.lattice.spacing[r.axis] ? kGougeSamples : 0;
+    for (int s = 0; s < between + 2; ++s) {
+      Vec3 point = r.origin();
+      point[r.axis] = s == 0 ? g.lo : (s == 1 ? g.hi : g.lo + g.length() * (s - 1) / (between + 1));
+      const double depth = distance_.distance(point);
+      if (depth <= std::max(options_.tolerance, finding_.gouge_mm)) continue;
+      finding_.gouge_mm = depth;
+      finding_.gouge_point = point;
+      finding_.gouge_tip = tipWhenReached(pose, span, r.axis, point[r.axis]);
+    }
+  }
+
+  Stock& stock_;
+  Extents& extents_;
+  const MeshDexels& part_;
+  const Extents& part_extents_;
+  const PartDistance& distance_;
+  const SweepOptions& options_;
+  int thread_, threads_;
+  MoveFinding finding_;
+  std::map<int, MoveFinding> findings_;
+  std::int64_t poses_ = 0;
+  SpanList removed_;
+};
+
+std::vector<const ToolSolid*> toolOfEveryRow(const Toolpath& path, const std::map<std::string, ToolSolid>& tools) {
+  std::vector<const ToolSolid*> out(path.size());
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    const auto it = tools.find(path[i].tool);
+    if (it == tools.end())
+      throw InputError("toolpath point " + std::to_string(i) + " uses tool '" + path[i].tool +
+                       "', which tools.json does not describe");
+    out[i] = &it->second;
+  }
+  return out;
+}
+
+}  // namespace
+
+SweepResult sweepToolpath(Stock& stock, const MeshDexels& part, const PartDistance& part_distance,
+                          const Toolpath& path, const std::map<std::string, ToolSolid>& tools,
+                          const SweepOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<const ToolSolid*> row_tools = toolOfEveryRow(path, tools);
+  const int threads = options.threads > 0 ? options.threads
+                                          : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  Extents extents = stockExtents(stock);
+  const Extents part_extents = solidExtents(part);
+  std::vector<Worker> workers;
+  for (int t = 0; t < threads; ++t)
+    workers.emplace_back(stock, extents, part, part_extents, part_distance, options, t, threads);
+  std::vector<std::thread> running;
+  for (int t = 1; t < threads; ++t) running.emplace_back([&, t] { workers[t].run(path, row_tools); });
+  workers[0].run(path, row_tools);
+  for (std::thread& t : running) t.join();
+  SweepResult result;
+  for (const Worker& w : workers)
+    for (const auto& [row, finding] : w.findings()) mergeFinding(result.findings[row], finding);
+  result.poses = workers[0].poses();
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace art2part

@@ -1,0 +1,128 @@
+#include "art2part/simulation/verify.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+
+#include "art2part/simulation/mesh_dexels.h"
+#include "art2part/simulation/part_distance.h"
+
+namespace art2part {
+
+namespace {
+
+constexpr double kAutomaticRays = 1.5e6;
+constexpr double kFinestAutomatic = 0.1;
+
+Box unite(Box a, const Box& b) {
+  if (!b.empty()) {
+    a.extend(b.min);
+    a.extend(b.max);
+  }
+  return a;
+}
+
+Stock initialStock(const Mesh* stock_mesh, const DexelLattice& lattice, const MeshDexels& part) {
+  Stock stock = stock_mesh ? meshStock(MeshDexels(*stock_mesh, lattice)) : boxStock(lattice);
+  addSolid(stock, part);
+  return stock;
+}
+
+std::map<std::string, ToolSolid> toolSolids(const std::vector<Tool>& tools, double chord) {
+  std::map<std::string, ToolSolid> solids;
+  for (const Tool& tool : tools) solids[tool.id] = toolSolid(tool, chord);
+  return solids;
+}
+
+void listFindings(VerificationReport& r, const std::map<int, MoveFinding>& findings, const Toolpath& path,
+                  double tolerance, int max_listed) {
+  for (const auto& [point, f] : findings) {
+    const CutterLocation& row = path[point];
+    if (f.gouge_mm > tolerance) {
+      ++r.gouges;
+      r.worst_gouge_mm = std::max(r.worst_gouge_mm, f.gouge_mm);
+      r.gouge_list.push_back({point, row.op, row.setup, row.tool, f.gouge_mm, f.gouge_point, f.gouge_tip});
+    }
+    if (f.collision_mm > tolerance) {
+      ++r.collisions;
+      r.worst_collision_mm = std::max(r.worst_collision_mm, f.collision_mm);
+      if (static_cast<int>(r.collision_list.size()) < max_listed)
+        r.collision_list.push_back(
+            {point, row.op, row.setup, row.tool, f.collision, f.collision_mm, f.collision_point, f.collision_tip});
+    }
+  }
+  std::stable_sort(r.gouge_list.begin(), r.gouge_list.end(),
+                   [](const GougeRecord& a, const GougeRecord& b) { return a.depth_mm > b.depth_mm; });
+  if (static_cast<int>(r.gouge_list.size()) > max_listed) r.gouge_list.resize(max_listed);
+}
+
+void listLeftover(VerificationReport& r, LeftoverAnalysis leftover, int max_listed) {
+  r.leftover_volume_mm3 = leftover.volume_mm3;
+  r.leftover_max_mm = leftover.max_thickness_mm;
+  r.region_count = static_cast<int>(leftover.regions.size());
+  r.regions = std::move(leftover.regions);
+  if (static_cast<int>(r.regions.size()) > max_listed) r.regions.resize(max_listed);
+  r.face_count = static_cast<int>(leftover.faces.size());
+  r.faces = std::move(leftover.faces);
+  std::stable_sort(r.faces.begin(), r.faces.end(), [](const FaceCusp& a, const FaceCusp& b) { return a.max_mm > b.max_mm; });
+  if (static_cast<int>(r.faces.size()) > max_listed) r.faces.resize(max_listed);
+}
+
+}  // namespace
+
+double automaticResolution(const Box& box) {
+  const Vec3 s = box.size();
+  const double area = s.x() * s.y() + s.y() * s.z() + s.z() * s.x();
+  return std::max(kFinestAutomatic, std::sqrt(area / kAutomaticRays));
+}
+
+VerificationReport verifyToolpath(const Mesh& part, const std::vector<int>& triangle_face, const Toolpath& path,
+                                  const std::vector<Tool>& tools, const VerifyOptions& options,
+                                  VerificationState* state) {
+  const auto start = std::chrono::steady_clock::now();
+  if (path.empty()) throw InputError("verify: the toolpath has no points");
+  if (part.triangles.empty()) throw InputError("verify: the part has no triangles");
+  if (!(options.tolerance >= 0.0)) throw InputError("verify: the tolerance must not be negative");
+  const Box part_box = boundingBox(part);
+  const Box box = options.stock_mesh ? unite(boundingBox(*options.stock_mesh), part_box)
+                                     : stockBox(part_box, std::max(options.stock_margin, 0.0));
+  const double resolution = options.resolution > 0.0 ? options.resolution : automaticResolution(box);
+  const DexelLattice lattice = DexelLattice::over(box, resolution);
+  const std::map<std::string, ToolSolid> solids = toolSolids(tools, options.tool_chord_mm);
+  MeshDexels part_dexels(part, lattice);
+  Stock stock = initialStock(options.stock_mesh, lattice, part_dexels);
+
+  VerificationReport r;
+  r.resolution_mm = resolution;
+  r.tolerance_mm = options.tolerance;
+  r.spacing = lattice.spacing;
+  r.dexels = lattice.totalRays();
+  r.moves = static_cast<int>(path.size());
+  r.stock_box = box;
+  r.stock_volume_mm3 = stock.volume();
+  r.part_volume_mm3 = part_dexels.volume();
+
+  const PartDistance distance(part);
+  SweepOptions sweep_options;
+  sweep_options.tolerance = options.tolerance;
+  sweep_options.step_fraction = options.step_fraction;
+  sweep_options.threads = options.threads;
+  const SweepResult sweep = sweepToolpath(stock, part_dexels, distance, path, solids, sweep_options);
+  r.poses = sweep.poses;
+  r.seconds_sweep = sweep.seconds;
+  r.moves_per_second = r.moves / std::max(sweep.seconds, 1e-9);
+  listFindings(r, sweep.findings, path, options.tolerance, options.max_listed);
+
+  r.remaining_volume_mm3 = stock.volume();
+  r.removed_volume_mm3 = r.stock_volume_mm3 - r.remaining_volume_mm3;
+  listLeftover(r, analyseLeftover(stock, part_dexels, part_box, triangle_face), options.max_listed);
+  if (state) {
+    state->stock = std::move(stock);
+    state->part = std::move(part_dexels);
+  }
+  r.seconds_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+}  // namespace art2part

@@ -1,0 +1,190 @@
+// controller_bridge: toolpaths -> the machine's joint trajectory (the post stage) -> a controller.
+//   params:   ~machine (a config/machines/*.yaml path, required), ~rate (trajectory points per second, default 50),
+//             ~blend_tolerance (mm, default the post's 0.005), ~chordal_tolerance (mm, default the post's 0.005),
+//             ~controller_wait (s to wait for follow_joint_trajectory's server, default 2)
+//   service:  run_program (RunToolpaths): reads FOLDER/toolpaths.csv and FOLDER/tools.json (a plan folder), builds the
+//             machine program (buildMachineProgram, mode 3+2 | 5axis | auto), its waypoints and their time
+//             parameterization, samples it at the rate; publishes it and sends it to the controller. The trajectory
+//             starts where the controller's joint_states last put the joints (up to the safe height first, then to
+//             the program's start), else at the program's start. Bad input: success=false with the reason.
+//   action client: follow_joint_trajectory (FollowJointTrajectory), when a server is there
+//   topics:   joint_trajectory (trajectory_msgs/JointTrajectory, latched), the last trajectory built;
+//             subscribes joint_states (sensor_msgs/JointState)
+#include <actionlib/client/simple_action_client.h>
+#include <ros/ros.h>
+#include <sensor_msgs/JointState.h>
+#include <trajectory_msgs/JointTrajectory.h>
+
+#include <art2part/FollowJointTrajectoryAction.h>
+#include <art2part/RunToolpaths.h>
+
+#include <filesystem>
+#include <mutex>
+#include <optional>
+
+#include "art2part/post/joint_trajectory.h"
+#include "art2part/post/machine_program.h"
+#include "art2part/tooling/tool.h"
+#include "art2part/tooling/toolpath.h"
+#include "machine_conversions.h"
+
+namespace art2part {
+
+using TrajectoryClient = actionlib::SimpleActionClient<FollowJointTrajectoryAction>;
+
+class ControllerBridge {
+ public:
+  ControllerBridge(ros::NodeHandle& nh, ros::NodeHandle& pnh, Machine machine)
+      : machine_(std::move(machine)), client_(nh, "follow_joint_trajectory", true) {
+    pnh.param("rate", rate_, 50.0);
+    pnh.param("blend_tolerance", trajectory_options_.blend_tolerance, trajectory_options_.blend_tolerance);
+    pnh.param("chordal_tolerance", post_options_.chordal_tolerance, post_options_.chordal_tolerance);
+    pnh.param("controller_wait", controller_wait_, 2.0);
+    if (!(rate_ > 0) || !(trajectory_options_.blend_tolerance > 0) || !(post_options_.chordal_tolerance > 0))
+      throw InputError("~rate, ~blend_tolerance and ~chordal_tolerance must be positive");
+    trajectory_pub_ = nh.advertise<trajectory_msgs::JointTrajectory>("joint_trajectory", 1, true);
+    state_sub_ = nh.subscribe("joint_states", 10, &ControllerBridge::onJointState, this);
+    service_ = nh.advertiseService("run_program", &ControllerBridge::runProgram, this);
+    ROS_INFO("controller_bridge: machine %s (%s)", machine_.name.c_str(), kinematicsModuleName(machine_.kind).c_str());
+  }
+
+ private:
+  void onJointState(const sensor_msgs::JointState::ConstPtr& msg) {
+    if (msg->name.size() != msg->position.size()) return;
+    std::vector<double> joints(machine_.jointCount(), 0.0);
+    std::vector<bool> seen(machine_.jointCount(), false);
+    for (std::size_t i = 0; i < msg->name.size(); ++i) {
+      const int j = machineJointIndex(machine_, msg->name[i]);
+      if (j < 0) continue;
+      joints[j] = fromRos(machine_.joints[j], msg->position[i]);
+      seen[j] = true;
+    }
+    if (std::find(seen.begin(), seen.end(), false) != seen.end()) return;  // not all of this machine's joints
+    std::lock_guard<std::mutex> lock(state_mutex_);
+    current_ = joints;
+  }
+
+  // The machine's waypoints: from where the joints are (if known and elsewhere) up to the safe height, to the
+  // program's start, then the program.
+  std::vector<JointWaypoint> waypointsFrom(const MachineProgram& program) {
+    std::vector<JointWaypoint> waypoints = programWaypoints(program);
+    std::optional<std::vector<double>> current;
+    {
+      std::lock_guard<std::mutex> lock(state_mutex_);
+      current = current_;
+    }
+    if (!current || waypoints.empty()) return waypoints;
+    const std::vector<double> start = jointVector(machine_, waypoints.front().joints);
+    double gap = 0;
+    for (int j = 0; j < machine_.jointCount(); ++j) gap = std::max(gap, std::abs((*current)[j] - start[j]));
+    if (gap < 1e-9) return waypoints;
+    JointWaypoint here;
+    here.joints = jointPositionFromVector(machine_, *current);
+    here.move = MoveKind::Rapid;
+    here.stop = true;
+    JointWaypoint up = here;
+    up.joints.linear.z() = std::max(here.joints.linear.z(), program.retract_z);
+    std::vector<JointWaypoint> lead_in{here};
+    if (up.joints.linear.z() > here.joints.linear.z()) lead_in.push_back(up);
+    waypoints.front().move = MoveKind::Rapid;
+    waypoints.insert(waypoints.begin(), lead_in.begin(), lead_in.end());
+    return waypoints;
+  }
+
+  bool runProgram(RunToolpaths::Request& req, RunToolpaths::Response& res) {
+    std::lock_guard<std::mutex> running(run_mutex_);  // one program at a time
+    try {
+      if (req.folder.empty()) throw InputError("name a folder holding toolpaths.csv and tools.json");
+      namespace fs = std::filesystem;
+      if (!fs::is_directory(req.folder)) throw InputError(req.folder + " is not a folder");
+      for (const char* file : {"toolpaths.csv", "tools.json"})
+        if (!fs::is_regular_file(fs::path(req.folder) / file))
+          throw InputError(req.folder + " has no " + file);
+      const double rate = req.rate > 0 ? req.rate : rate_;
+      PostOptions options = post_options_;
+      options.mode = parsePostMode(req.mode.empty() ? "auto" : req.mode);
+      const Toolpath path = readToolpathsCsv((fs::path(req.folder) / "toolpaths.csv").string());
+      const std::vector<Tool> tools = readToolsJson((fs::path(req.folder) / "tools.json").string());
+      std::string name = fs::path(req.folder).lexically_normal().filename().string();
+      if (name.empty()) name = fs::path(req.folder).lexically_normal().parent_path().filename().string();
+      const MachineProgram program = buildMachineProgram(machine_, path, tools, name.empty() ? "part" : name, options);
+      const JointTrajectory trajectory = parameterizeTrajectory(machine_, waypointsFrom(program), trajectory_options_);
+      trajectory_msgs::JointTrajectory msg = jointTrajectoryMessage(machine_, trajectory, rate);
+      msg.header.stamp = ros::Time(0);  // start when the controller gets it
+      trajectory_pub_.publish(msg);
+      res.mode = postModeName(program.mode);
+      res.duration = trajectory.duration();
+      res.points = static_cast<uint32_t>(msg.points.size());
+      res.success = true;
+      res.message = "'" + name + "' on " + machine_.name + ": " + std::to_string(program.setups.size()) +
+                    " setup(s), mode " + res.mode + ", " + std::to_string(program.stepCount()) + " steps, " +
+                    std::to_string(trajectory.duration()) + " s, " + std::to_string(msg.points.size()) + " points";
+
+      if (!client_.waitForServer(ros::Duration(controller_wait_))) {
+        res.message += "; no controller on follow_joint_trajectory: published only";
+        ROS_INFO("run_program: %s", res.message.c_str());
+        return true;
+      }
+      FollowJointTrajectoryGoal goal;
+      goal.trajectory = msg;
+      client_.sendGoal(goal);
+      res.sent = true;
+      if (!req.wait) {
+        res.message += "; sent to the controller";
+        ROS_INFO("run_program: %s", res.message.c_str());
+        return true;
+      }
+      // Wait for the controller's result: as long as the trajectory takes at the controller's time scale, so no
+      // time limit here, only ROS shutting down.
+      while (ros::ok() && !client_.waitForResult(ros::Duration(0.5))) {
+      }
+      const actionlib::SimpleClientGoalState state = client_.getState();
+      const auto result = client_.getResult();
+      res.error_code = result ? result->error_code : FollowJointTrajectoryResult::INVALID_GOAL;
+      res.error_string = result ? result->error_string : "no result";
+      res.success = state == actionlib::SimpleClientGoalState::SUCCEEDED &&
+                    res.error_code == FollowJointTrajectoryResult::SUCCESSFUL;
+      res.message += "; controller: " + state.toString() + (res.error_string.empty() ? "" : ": " + res.error_string);
+      ROS_INFO("run_program: %s", res.message.c_str());
+    } catch (const std::exception& e) {  // InputError (bad input) and anything else: an answer, not a crash
+      res = RunToolpaths::Response();
+      res.success = false;
+      res.message = e.what();
+      ROS_WARN("run_program: %s", e.what());
+    }
+    return true;
+  }
+
+  Machine machine_;
+  double rate_ = 50, controller_wait_ = 2;
+  PostOptions post_options_;
+  TrajectoryOptions trajectory_options_;
+  TrajectoryClient client_;
+  ros::Publisher trajectory_pub_;
+  ros::Subscriber state_sub_;
+  ros::ServiceServer service_;
+  std::mutex state_mutex_, run_mutex_;
+  std::optional<std::vector<double>> current_;  // core units, machine joint order
+};
+
+}  // namespace art2part
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "controller_bridge");
+  ros::NodeHandle nh, pnh("~");
+  std::string machine_file;
+  if (!pnh.getParam("machine", machine_file)) {
+    ROS_FATAL("controller_bridge: set ~machine to a machine file (config/machines/*.yaml)");
+    return 1;
+  }
+  try {
+    art2part::ControllerBridge bridge(nh, pnh, art2part::loadMachine(machine_file));
+    ros::AsyncSpinner spinner(3);  // joint_states and the action client's callbacks while run_program waits
+    spinner.start();
+    ros::waitForShutdown();
+  } catch (const std::exception& e) {
+    ROS_FATAL("controller_bridge: %s", e.what());
+    return 1;
+  }
+  return 0;
+}

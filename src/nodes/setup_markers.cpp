@@ -1,0 +1,321 @@
+#include "setup_markers.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+#include "art2part/sphere/special_directions.h"
+#include "art2part/visibility/cones.h"
+#include "part_conversions.h"
+
+namespace art2part {
+
+namespace {
+
+constexpr int kMaxLevel = 7;           // what analyseVisibility accepts
+constexpr double kUnitTolerance = 1e-6;
+
+std::string fmt(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+// sampleSphere(level) with `directions` as its directions when they are what analyseVisibility makes of it (each
+// cell's own direction lies in that cell, the extras after them lie in some cell); otherwise an empty set.
+DirectionSet sphereFor(const std::vector<Vec3>& directions) {
+  const int count = static_cast<int>(directions.size());
+  for (int level = kMaxLevel; level >= 0; --level) {
+    if ((4LL << (2 * level)) > count) continue;
+    DirectionSet set = sampleSphere(level);
+    const int cells = set.cellCount();
+    set.cell_of.resize(count);
+    bool consistent = true;
+    for (int d = 0; d < count && consistent; ++d) {
+      const int c = cellContaining(set, directions[d]);
+      if (d < cells) consistent = c == d;
+      else set.cell_of[d] = c;
+    }
+    if (consistent) return set;
+  }
+  return DirectionSet{};
+}
+
+// Special flags by matching the part's special directions (made, and so compared, exactly as analyseVisibility does).
+std::vector<char> matchSpecial(const Part& part, const std::vector<Vec3>& directions) {
+  std::vector<char> special(directions.size(), 0);
+  const std::vector<SpecialDirection> found = specialDirections(part);
+  for (std::size_t d = 0; d < directions.size(); ++d)
+    for (const SpecialDirection& s : found)
+      if (s.direction.norm() > 0 && directions[d].dot(s.direction.normalized()) >= 1.0 - 1e-12) {
+        special[d] = 1;
+        break;
+      }
+  return special;
+}
+
+std_msgs::ColorRGBA toColour(const RgbColour& c, float alpha = 1.0f) {
+  std_msgs::ColorRGBA out;
+  out.r = c[0];
+  out.g = c[1];
+  out.b = c[2];
+  out.a = alpha;
+  return out;
+}
+
+visualization_msgs::Marker baseMarker(const std::string& frame_id, const std::string& ns, int id, int type) {
+  visualization_msgs::Marker m;
+  m.header.frame_id = frame_id;
+  m.ns = ns;
+  m.id = id;
+  m.type = type;
+  m.action = visualization_msgs::Marker::ADD;
+  m.pose.orientation.w = 1.0;
+  m.scale.x = m.scale.y = m.scale.z = 1.0;
+  m.color.a = 1.0f;
+  return m;
+}
+
+geometry_msgs::Vector3 toVectorMsg(const Vec3& v) {
+  geometry_msgs::Vector3 out;
+  out.x = v.x();
+  out.y = v.y();
+  out.z = v.z();
+  return out;
+}
+
+template <class Out, class In>
+std::vector<Out> converted(const std::vector<In>& in) {
+  return std::vector<Out>(in.begin(), in.end());
+}
+
+}  // namespace
+
+// ---- the request -------------------------------------------------------------------------------------------------
+
+SetupOptions setupOptionsFrom(const PlanSetupsRequest& request) {
+  SetupOptions options;
+  if (!request.mode.empty() && request.mode != "3axis" && request.mode != "5axis")
+    throw InputError("unknown mode '" + request.mode + "' (use 3axis or 5axis)");
+  options.mode = parseMachineMode(request.mode.empty() ? std::string("3axis") : request.mode);
+  if (!std::isfinite(request.max_tilt_deg) || request.max_tilt_deg < 0 || request.max_tilt_deg > 180)
+    throw InputError("max_tilt_deg " + fmt(request.max_tilt_deg) + " is out of range 0..180 (0 = default 110)");
+  if (request.max_tilt_deg > 0) options.max_tilt_deg = request.max_tilt_deg;
+  if (!std::isfinite(request.time_limit) || request.time_limit < 0)
+    throw InputError("time_limit " + fmt(request.time_limit) + " must be a positive number of seconds (0 = default 5)");
+  if (request.time_limit > 0) options.time_limit_s = request.time_limit;
+  return options;
+}
+
+VisibilityOptions visibilityOptionsFrom(const PlanSetupsRequest& request) {
+  VisibilityOptions options;
+  if (request.level < 0 || request.level > kMaxLevel)
+    throw InputError("level " + std::to_string(request.level) + " is out of range 1.." + std::to_string(kMaxLevel) +
+                     " (0 = default " + std::to_string(options.level) + ")");
+  if (request.level != 0) options.level = request.level;
+  options.special_directions = !request.no_special_directions;
+  return options;
+}
+
+bool carriesVisibility(const PlanSetupsRequest& request) {
+  return !request.directions.empty() || !request.bits.empty() || !request.special.empty();
+}
+
+VisibilityResult visibilityFromRequest(const Part& part, const PlanSetupsRequest& request) {
+  static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "bits are copied into 64-bit words byte by byte");
+  const int D = static_cast<int>(request.directions.size());
+  const int T = part.mesh.triangleCount();
+  if (D == 0) throw InputError("bits or special flags given without directions");
+
+  std::vector<Vec3> directions(D);
+  for (int d = 0; d < D; ++d) {
+    const auto& v = request.directions[d];
+    const Vec3 u(v.x, v.y, v.z);
+    if (!u.allFinite() || std::abs(u.norm() - 1.0) > kUnitTolerance)
+      throw InputError("direction " + std::to_string(d) + " (" + fmt(v.x) + ", " + fmt(v.y) + ", " + fmt(v.z) +
+                       ") is not a unit vector");
+    directions[d] = u.normalized();
+  }
+
+  const std::size_t bytes = (static_cast<std::size_t>(D) + 7) / 8;
+  if (request.bits.size() != static_cast<std::size_t>(T) * bytes)
+    throw InputError("bits: " + std::to_string(request.bits.size()) + " bytes, but the part's " + std::to_string(T) +
+                     " triangles x ceil(" + std::to_string(D) + " directions / 8) need " +
+                     std::to_string(static_cast<std::size_t>(T) * bytes) +
+                     " (a visibility result of another part or level?)");
+  if (!request.special.empty() && request.special.size() != static_cast<std::size_t>(D))
+    throw InputError("special: " + std::to_string(request.special.size()) + " flags for " + std::to_string(D) +
+                     " directions");
+
+  VisibilityResult result;
+  result.directions = sphereFor(directions);
+  result.directions.directions = directions;
+  if (request.special.empty()) {
+    result.directions.special = matchSpecial(part, directions);
+  } else {
+    result.directions.special.resize(D);
+    for (int d = 0; d < D; ++d) result.directions.special[d] = request.special[d] ? 1 : 0;
+  }
+  for (char s : result.directions.special) result.special_directions += s;
+
+  result.map.bits = BitMatrix(T, D);
+  const int words = result.map.bits.wordsPerRow();
+  const std::uint64_t last_word_mask = D % 64 == 0 ? ~std::uint64_t(0) : (std::uint64_t(1) << (D % 64)) - 1;
+  for (int t = 0; t < T; ++t) {
+    std::uint64_t* row = result.map.bits.row(t);
+    std::memcpy(row, &request.bits[static_cast<std::size_t>(t) * bytes], bytes);
+    row[words - 1] &= last_word_mask;  // padding bits of the last byte are not directions
+  }
+  result.unseen_triangles = invisibleTriangles(result.map);
+  return result;
+}
+
+// ---- the response ------------------------------------------------------------------------------------------------
+
+geometry_msgs::Pose toPoseMsg(const SetupFrame& frame) {
+  geometry_msgs::Pose pose;
+  pose.position = toPointMsg(frame.origin);
+  Eigen::Matrix3d rotation;
+  rotation.col(0) = frame.x;
+  rotation.col(1) = frame.y;
+  rotation.col(2) = frame.z;
+  const Eigen::Quaterniond q = Eigen::Quaterniond(rotation).normalized();
+  pose.orientation.x = q.x();
+  pose.orientation.y = q.y();
+  pose.orientation.z = q.z();
+  pose.orientation.w = q.w();
+  return pose;
+}
+
+MachiningSetup toMachiningSetup(const Setup& setup, int k, const DirectionSet& directions) {
+  MachiningSetup out;
+  out.id = k;
+  const bool indexed = setup.direction >= 0 && setup.direction < directions.size();
+  out.direction = toVectorMsg(indexed ? directions.directions[setup.direction] : setup.frame.z);
+  out.direction_index = setup.direction;
+  out.special = setup.special;
+  out.frame = toPoseMsg(setup.frame);
+  out.faces = converted<int32_t>(setup.faces);
+  out.triangles = converted<int32_t>(setup.triangles);
+  out.reachable_triangles = setup.reachable_triangles;
+  out.square_face_area = setup.square_face_area;
+  return out;
+}
+
+void fillResponse(const SetupPlan& plan, const DirectionSet& directions, PlanSetupsResponse& response) {
+  response.mode = machineModeName(plan.mode);
+  response.setups.clear();
+  for (int k = 0; k < static_cast<int>(plan.setups.size()); ++k)
+    response.setups.push_back(toMachiningSetup(plan.setups[k], k, directions));
+  response.unmachinable_triangles = converted<uint32_t>(plan.unmachinable_triangles);
+  response.unmachinable_faces = converted<uint32_t>(plan.unmachinable_faces);
+  response.split_faces = converted<uint32_t>(plan.split_faces);
+  response.proven_minimal = plan.proven_minimal;
+  response.greedy_setups = static_cast<uint32_t>(std::max(0, plan.greedy_setups));
+  response.core_directions = static_cast<uint32_t>(std::max(0, plan.cover.core_candidates));
+  response.core_triangles = static_cast<uint32_t>(std::max(0, plan.cover.core_elements));
+}
+
+// ---- tf2 ---------------------------------------------------------------------------------------------------------
+
+std::string setupFrameName(int k) { return "setup_" + std::to_string(k); }
+
+std::vector<geometry_msgs::TransformStamped> setupTransforms(const std::vector<MachiningSetup>& setups, int previous_count,
+                                                             const std::string& parent,
+                                                             const std::string& unused_parent, const ros::Time& stamp) {
+  std::vector<geometry_msgs::TransformStamped> out;
+  const int count = static_cast<int>(setups.size());
+  for (int k = 0; k < std::max(count, previous_count); ++k) {
+    geometry_msgs::TransformStamped t;
+    t.header.stamp = stamp;
+    t.child_frame_id = setupFrameName(k);
+    if (k < count) {
+      t.header.frame_id = parent;
+      t.transform.translation.x = setups[k].frame.position.x;
+      t.transform.translation.y = setups[k].frame.position.y;
+      t.transform.translation.z = setups[k].frame.position.z;
+      t.transform.rotation = setups[k].frame.orientation;
+    } else {
+      t.header.frame_id = unused_parent;
+      t.transform.rotation.w = 1.0;
+    }
+    out.push_back(t);
+  }
+  return out;
+}
+
+// ---- rviz --------------------------------------------------------------------------------------------------------
+
+RgbColour setupColour(int k) {
+  static const RgbColour kColours[] = {
+      {0.12f, 0.47f, 0.71f}, {1.00f, 0.50f, 0.05f}, {0.17f, 0.63f, 0.17f}, {0.58f, 0.40f, 0.74f},
+      {0.09f, 0.75f, 0.81f}, {0.89f, 0.47f, 0.76f}, {0.74f, 0.74f, 0.13f}, {0.55f, 0.34f, 0.29f},
+      {0.40f, 0.40f, 0.90f}, {0.60f, 0.60f, 0.60f}};
+  constexpr int n = sizeof kColours / sizeof kColours[0];
+  const int i = k < 0 ? 0 : k;
+  RgbColour c = kColours[i % n];
+  const float lighten = std::min(0.6f, 0.3f * static_cast<float>(i / n));  // later rounds: the same hues, lighter
+  for (float& v : c) v += (1.0f - v) * lighten;
+  return c;
+}
+
+visualization_msgs::MarkerArray setupMarkers(const Part& part, const SetupPlan& plan, const std::string& frame_id) {
+  visualization_msgs::MarkerArray array;
+  visualization_msgs::Marker clear;
+  clear.header.frame_id = frame_id;
+  clear.action = visualization_msgs::Marker::DELETEALL;
+  clear.pose.orientation.w = 1.0;
+  array.markers.push_back(clear);
+
+  const Box& box = part.check.box;
+  const Vec3 centre = box.center();
+  const double diagonal = std::max(box.diagonal(), 1e-9);
+  for (int k = 0; k < static_cast<int>(plan.setups.size()); ++k) {
+    const Vec3 z = plan.setups[k].frame.z.normalized();
+    const RgbColour colour = setupColour(k);
+    // From the centre to the box's face along z (its support distance), then a quarter diagonal beyond.
+    const double length = 0.5 * z.cwiseAbs().dot(box.size()) + 0.25 * diagonal;
+
+    auto arrow = baseMarker(frame_id, "setup_arrows", k, visualization_msgs::Marker::ARROW);
+    arrow.points.push_back(toPointMsg(centre));
+    arrow.points.push_back(toPointMsg(centre + length * z));
+    arrow.scale.x = 0.012 * diagonal * kMetresPerMm;  // shaft diameter
+    arrow.scale.y = 0.03 * diagonal * kMetresPerMm;   // head diameter
+    arrow.scale.z = 0.06 * diagonal * kMetresPerMm;   // head length
+    arrow.color = toColour(colour);
+    array.markers.push_back(arrow);
+
+    auto label = baseMarker(frame_id, "setup_labels", k, visualization_msgs::Marker::TEXT_VIEW_FACING);
+    label.pose.position = toPointMsg(centre + (length + 0.06 * diagonal) * z);
+    label.scale.x = label.scale.y = label.scale.z = 0.05 * diagonal * kMetresPerMm;  // text height
+    label.color = toColour(colour);
+    label.text = setupFrameName(k);
+    array.markers.push_back(label);
+  }
+
+  const int T = part.mesh.triangleCount();
+  std::vector<int> owner(T, -1);  // setup k, -2 unmachinable, -1 neither
+  for (int k = 0; k < static_cast<int>(plan.setups.size()); ++k)
+    for (int t : plan.setups[k].triangles)
+      if (t >= 0 && t < T) owner[t] = k;
+  for (int t : plan.unmachinable_triangles)
+    if (t >= 0 && t < T) owner[t] = -2;
+  auto surface = baseMarker(frame_id, "part_by_setup", 0, visualization_msgs::Marker::TRIANGLE_LIST);
+  surface.points.reserve(3 * static_cast<std::size_t>(T));
+  surface.colors.reserve(3 * static_cast<std::size_t>(T));
+  for (int t = 0; t < T; ++t) {
+    const RgbColour c = owner[t] >= 0 ? setupColour(owner[t]) : owner[t] == -2 ? RgbColour{0.9f, 0.1f, 0.1f}
+                                                                               : RgbColour{0.25f, 0.25f, 0.25f};
+    for (int i = 0; i < 3; ++i) {
+      surface.points.push_back(toPointMsg(part.mesh.corner(t, i)));
+      surface.colors.push_back(toColour(c));
+    }
+  }
+  array.markers.push_back(surface);
+  return array;
+}
+
+}  // namespace art2part

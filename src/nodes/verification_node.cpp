@@ -1,0 +1,81 @@
+// verification_node: checks any plan folder (toolpaths.csv + tools.json, ours or a third party's) against its part by
+// simulating the stock (issue 5), for the supervisor and for a cell operator. The same steps as `art2part verify`.
+//   service:  verify_toolpaths (VerifyToolpaths): gouges, collisions, leftover and the whole JSON report
+//   topics:   verification_markers (MarkerArray, latched): DELETEALL, the remaining stock coloured by deviation,
+//             gouges (red) and collisions (orange) as spheres, in ~frame_id (default "part"), metres
+//   params:   ~frame_id, ~marker_cells (cells along the stock's longest side for the stock mesh; default 150)
+// Bad input (missing folder, malformed file, unknown tool, bad numbers) answers success=false with the reason; the node
+// stays up. A path that gouges or collides is success=true, passed=false. Requests run in parallel (AsyncSpinner);
+// when they finish out of order, the markers shown are those of the most recent request.
+#include <ros/ros.h>
+
+#include <atomic>
+#include <chrono>
+#include <mutex>
+
+#include "verification_markers.h"
+
+namespace art2part {
+
+class VerificationNode {
+ public:
+  VerificationNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
+    pnh.param<std::string>("frame_id", frame_id_, "part");
+    pnh.param("marker_cells", marker_cells_, 150);
+    if (marker_cells_ < 8) marker_cells_ = 8;
+    markers_pub_ = nh.advertise<visualization_msgs::MarkerArray>("verification_markers", 1, true);
+    service_ = nh.advertiseService("verify_toolpaths", &VerificationNode::verify, this);
+  }
+
+ private:
+  bool verify(VerifyToolpaths::Request& req, VerifyToolpaths::Response& res) {
+    const auto start = std::chrono::steady_clock::now();
+    const long ticket = ++requests_;
+    try {
+      FolderVerification v;
+      verifyFolder(req, v);
+      fillResponse(v.report, res);
+      res.success = true;
+      res.message = "'" + req.folder + "' on '" + partFileOf(req) + "': " + summaryOf(v.report);
+      publish(ticket, v);
+      ROS_INFO("verify_toolpaths: %s", res.message.c_str());
+    } catch (const std::exception& e) {  // InputError (a bad request) and anything else: an answer, not a crash
+      res = VerifyToolpaths::Response();
+      res.success = false;
+      res.message = e.what();
+      ROS_WARN("verify_toolpaths: %s", e.what());
+    }
+    res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return true;
+  }
+
+  // The markers are made outside the lock (contouring takes a while), and published unless a later request has been.
+  void publish(long ticket, const FolderVerification& v) {
+    if (ticket < shown_ticket_.load()) return;
+    const visualization_msgs::MarkerArray markers =
+        verificationMarkers(remainingStock(v, marker_cells_), v.report, frame_id_);
+    std::lock_guard<std::mutex> lock(publish_mutex_);
+    if (ticket < shown_ticket_.load()) return;
+    shown_ticket_ = ticket;
+    markers_pub_.publish(markers);
+  }
+
+  std::string frame_id_;
+  int marker_cells_ = 150;
+  ros::Publisher markers_pub_;
+  ros::ServiceServer service_;
+  std::mutex publish_mutex_;
+  std::atomic<long> requests_{0}, shown_ticket_{0};
+};
+
+}  // namespace art2part
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "verification");
+  ros::NodeHandle nh, pnh("~");
+  art2part::VerificationNode node(nh, pnh);
+  ros::AsyncSpinner spinner(2);  // a bad request is answered while a verification runs
+  spinner.start();
+  ros::waitForShutdown();
+  return 0;
+}

@@ -1,0 +1,522 @@
+// Post: G-code for LinuxCNC 2.9 from hand-made toolpaths. Every program goes through LinuxCNC's stand-alone
+// interpreter (rs274 -g -t TOOLTABLE); its canonical moves (STRAIGHT_TRAVERSE / STRAIGHT_FEED, in the program's mm and
+// degrees) are compared with our joints, and through forward kinematics with the toolpath: 1e-3 mm and 1e-3 deg.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "art2part/kinematics/inverse_kinematics.h"
+#include "art2part/post/gcode.h"
+#include "art2part/post/joint_trajectory.h"
+#include "art2part/post/machine_program.h"
+
+using namespace art2part;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = kPi / 180;
+
+Machine machineNamed(const std::string& name) {
+  return loadMachine(std::string(ART2PART_SOURCE_DIR) + "/config/machines/" + name + ".yaml");
+}
+
+Tool makeTool(const std::string& id, ToolType type) {
+  Tool tool;
+  tool.id = id;
+  tool.type = type;
+  tool.diameter = 6;
+  tool.corner_radius = type == ToolType::Ball ? 3 : 0;
+  tool.flute_length = 15;
+  tool.shank_diameter = 6;
+  tool.stickout = 30;
+  tool.holder = {{20, 30}};
+  tool.spindle_rpm = 8000;
+  tool.feed_mm_min = 600;
+  tool.plunge_mm_min = 200;
+  return tool;
+}
+
+std::vector<Tool> shopTools() { return {makeTool("flat6", ToolType::Flat), makeTool("ball6", ToolType::Ball)}; }
+
+CutterLocation point(int op, int setup, const std::string& tool, MoveKind move, const Vec3& tip, const Vec3& axis) {
+  CutterLocation p;
+  p.op = op;
+  p.setup = setup;
+  p.tool = tool;
+  p.move = move;
+  p.tip = tip;
+  p.axis = axis.normalized();
+  return p;
+}
+
+// A zig-zag pocket floor in the plane through `centre` normal to `axis`, 20 x 20 mm, entered and left from 8 mm up.
+void addPocket(Toolpath& path, int op, int setup, const std::string& tool, const Vec3& centre, const Vec3& axis,
+               const Vec3& across) {
+  const Vec3 along = axis.cross(across).normalized();
+  const Vec3 up = 8 * axis;
+  auto at = [&](double u, double v) { return Vec3(centre + u * across + v * along); };
+  path.push_back(point(op, setup, tool, MoveKind::Rapid, at(-10, -10) + up, axis));
+  path.push_back(point(op, setup, tool, MoveKind::Feed, at(-10, -10), axis));
+  for (int pass = 0; pass <= 5; ++pass) {
+    const double v = -10 + 4 * pass;
+    const bool forward = pass % 2 == 0;
+    if (pass > 0) path.push_back(point(op, setup, tool, MoveKind::Feed, at(forward ? -10 : 10, v), axis));
+    path.push_back(point(op, setup, tool, MoveKind::Feed, at(forward ? 10 : -10, v), axis));
+  }
+  path.push_back(point(op, setup, tool, MoveKind::Rapid, path.back().tip + up, axis));
+}
+
+// A 40 x 40 x 30 block: setup 0 pockets its top (flat), setup 1 a side face (flat, then ball), with the part turned
+// on the table for setup 1.
+Toolpath pocketsInTwoSetups() {
+  Toolpath path;
+  addPocket(path, 0, 0, "flat6", Vec3(0, 0, 27), Vec3::UnitZ(), Vec3::UnitX());
+  addPocket(path, 1, 1, "flat6", Vec3(0, -17, 15), -Vec3::UnitY(), Vec3::UnitX());
+  addPocket(path, 2, 1, "ball6", Vec3(0, -16, 15), -Vec3::UnitY(), Vec3::UnitZ());
+  return path;
+}
+
+PostOptions turnedSetupOne() {
+  PostOptions options;
+  FixturePose turned;
+  turned.rotation = rotationFromRpy(Vec3(0, 0, 90 * kDeg));
+  turned.origin = Vec3(5, 0, 0);
+  options.fixtures[1] = turned;
+  return options;
+}
+
+// A continuous 5-axis path: a full circle with the axis leaning 30 deg outwards (C turns a whole turn and crosses
+// +-180), a pass near the singularity (the axis sweeps past the C axis 0.6 deg off it: C swings half a turn), and one
+// straight through it (C held).
+Toolpath fiveAxisPath() {
+  Toolpath path;
+  const std::string tool = "ball6";
+  for (int k = 0; k <= 72; ++k) {
+    const double theta = k * 5 * kDeg;
+    const Vec3 axis(std::sin(30 * kDeg) * std::cos(theta), std::sin(30 * kDeg) * std::sin(theta), std::cos(30 * kDeg));
+    const Vec3 tip(15 * std::cos(theta), 15 * std::sin(theta), 10);
+    if (k == 0) path.push_back(point(0, 0, tool, MoveKind::Rapid, tip + 10 * axis, axis));
+    path.push_back(point(0, 0, tool, MoveKind::Feed, tip, axis));
+  }
+  for (double offset : {0.01, 0.0}) {
+    const int op = offset > 0 ? 1 : 2;
+    for (int k = 0; k <= 24; ++k) {
+      const double psi = (30 - 2.5 * k) * kDeg;
+      const Vec3 axis = Vec3(offset, std::sin(psi), std::cos(psi)).normalized();
+      const Vec3 tip(-10 + k * 20.0 / 24, offset > 0 ? 2 : -2, 15);
+      if (k == 0) path.push_back(point(op, 0, tool, MoveKind::Rapid, tip + 10 * axis, axis));
+      path.push_back(point(op, 0, tool, MoveKind::Feed, tip, axis));
+    }
+    path.push_back(point(op, 0, tool, MoveKind::Rapid, path.back().tip + 10 * path.back().axis, path.back().axis));
+  }
+  return path;
+}
+
+// ---- rs274 ---------------------------------------------------------------------------------------------------------
+
+struct Rs274Run {
+  int status = -1;
+  std::string errors;  // stderr without rs274's "executing" line
+  std::vector<std::array<double, 6>> moves;  // x y z a b c of every STRAIGHT_TRAVERSE / STRAIGHT_FEED
+  std::vector<bool> feed;
+};
+
+std::string readFile(const std::string& path) {
+  std::ifstream file(path);
+  std::stringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+void writeFile(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+
+Rs274Run runRs274(const std::string& program_text, const std::string& tool_table, const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("art2part_test_post_" + name);
+  std::filesystem::create_directories(dir);
+  const std::string program = (dir / "program.ngc").string(), table = (dir / "tool.tbl").string();
+  const std::string canon = (dir / "canon.txt").string(), err = (dir / "err.txt").string();
+  writeFile(program, program_text);
+  writeFile(table, tool_table);
+  const std::string command = "rs274 -g -t " + table + " " + program + " " + canon + " > /dev/null 2> " + err;
+  Rs274Run run;
+  const int raw = std::system(command.c_str());
+  run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  std::istringstream errors(readFile(err));
+  for (std::string line; std::getline(errors, line);)
+    if (line != "executing" && !line.empty()) run.errors += line + "\n";
+  static const std::regex move(R"((STRAIGHT_TRAVERSE|STRAIGHT_FEED)\(([^)]*)\))");
+  std::istringstream lines(readFile(canon));
+  for (std::string line; std::getline(lines, line);) {
+    std::smatch match;
+    if (!std::regex_search(line, match, move)) continue;
+    std::array<double, 6> values{};
+    std::istringstream numbers(match[2].str());
+    char comma;
+    for (int i = 0; i < 6; ++i) numbers >> values[i] >> comma;
+    run.moves.push_back(values);
+    run.feed.push_back(match[1] == "STRAIGHT_FEED");
+  }
+  return run;
+}
+
+Rs274Run expectAccepted(const std::string& program_text, const MachineProgram& program, const std::string& name) {
+  const Rs274Run run = runRs274(program_text, toolTableText(program, ToolTableUnits::Inches), name);
+  EXPECT_EQ(run.status, 0) << name << ": " << run.errors;
+  EXPECT_EQ(run.errors, "") << name;
+  return run;
+}
+
+// ---- what the interpreter should say -------------------------------------------------------------------------------
+
+// One motion the program makes: the step, its program position (x y z a b c as rs274 prints them), and the tool.
+struct ExpectedMove {
+  const ProgramStep* step = nullptr;
+  int setup = 0;  // index into program.setups
+  std::array<double, 6> position{};
+  double tool_length = 0;
+};
+
+int canonicalIndex(const std::string& joint_name) {
+  const std::string names = "XYZABC";
+  return static_cast<int>(names.find(joint_name));
+}
+
+// The steps that make rs274 move (a move whose words all round to the last ones written makes none), as the writer
+// prints them.
+std::vector<ExpectedMove> expectedMoves(const MachineProgram& program, const std::vector<int>& setups) {
+  std::vector<ExpectedMove> moves;
+  const Machine& machine = program.machine;
+  std::vector<std::string> last(machine.jointCount());
+  double tool_length = 0;
+  for (int index : setups) {
+    for (const ProgramStep& step : program.setups[index].steps) {
+      if (step.kind == StepKind::ToolChange) {
+        tool_length = program.tool(step.tool).length;
+        std::fill(last.begin(), last.end(), std::string());
+        continue;
+      }
+      ExpectedMove move{&step, index, {}, tool_length};
+      const Vec3 xyz = programXyz(step.joints, tool_length);
+      const std::vector<double> joints = jointVector(machine, step.joints);
+      bool changed = step.kind == StepKind::Retract;
+      for (int j = 0; j < machine.jointCount(); ++j) {
+        const double value = machine.joints[j].rotary ? joints[j] / kDeg : xyz[j];
+        move.position[canonicalIndex(machine.joints[j].name)] = value;
+        const std::string text = gcodeNumber(value);
+        changed = changed || text != last[j];
+        last[j] = text;
+      }
+      if (changed) moves.push_back(move);
+    }
+  }
+  return moves;
+}
+
+std::vector<int> allSetups(const MachineProgram& program) {
+  std::vector<int> all;
+  for (size_t i = 0; i < program.setups.size(); ++i) all.push_back(static_cast<int>(i));
+  return all;
+}
+
+// rs274's moves, back to our joints (mm, rad).
+JointPosition jointsOfCanonical(const Machine& machine, const std::array<double, 6>& move, double tool_length) {
+  std::vector<double> values;
+  for (const Joint& joint : machine.joints) {
+    const double value = move[canonicalIndex(joint.name)];
+    values.push_back(joint.rotary ? value * kDeg : value);
+  }
+  JointPosition joints = jointPositionFromVector(machine, values);
+  joints.linear.z() += tool_length;
+  return joints;
+}
+
+double distanceToSegment(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 ab = b - a;
+  const double f = ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+  return (p - (a + f * ab)).norm();
+}
+
+// The interpreter's moves equal ours one for one; through FK they land on the toolpath; none leaves the travel.
+void checkAgainstToolpath(const MachineProgram& program, const Toolpath& path, const Rs274Run& run,
+                          const std::vector<int>& setups) {
+  const Machine& machine = program.machine;
+  const std::vector<ExpectedMove> expected = expectedMoves(program, setups);
+  ASSERT_EQ(run.moves.size(), expected.size());
+  for (size_t m = 0; m < expected.size(); ++m) {
+    const ExpectedMove& move = expected[m];
+    // A program starts wherever the machine is: its first move, the safe retract, says only Z.
+    const bool first_retract = m == 0 && move.step->kind == StepKind::Retract;
+    for (int c = 0; c < 6; ++c) {
+      if (first_retract && c != 2) continue;
+      ASSERT_NEAR(run.moves[m][c], move.position[c], 1e-3) << "move " << m << " coordinate " << c;
+    }
+    if (first_retract) continue;
+    EXPECT_EQ(run.feed[m], move.step->kind == StepKind::Move && move.step->move == MoveKind::Feed) << "move " << m;
+    const JointPosition joints = jointsOfCanonical(machine, run.moves[m], move.tool_length);
+    EXPECT_EQ(limitViolation(machine, joints, 1e-3), "") << "move " << m;
+    if (move.step->row < 0) continue;
+    Placement placement;
+    placement.fixture = program.setups[move.setup].fixture;
+    placement.tool_length = move.tool_length;
+    const ToolPose pose = forwardKinematics(machine, placement, joints);
+    const CutterLocation& to = path[move.step->row];
+    if (move.step->at_row) {
+      EXPECT_LT((pose.tip - to.tip).norm(), 1e-3) << "move " << m << " row " << move.step->row;
+      EXPECT_LT(angleBetween(pose.axis, to.axis), 1e-3 * kDeg) << "move " << m << " row " << move.step->row;
+    } else {
+      const CutterLocation& from = path[move.step->row - 1];
+      EXPECT_LT(distanceToSegment(pose.tip, from.tip, to.tip), 1e-3) << "move " << m;
+    }
+  }
+}
+
+// ---- tests ---------------------------------------------------------------------------------------------------------
+
+TEST(Post, ThreePlusTwoPocketsInTwoSetupsPassRs274AndLandOnTheToolpath) {
+  const Machine machine = machineNamed("trunnion_ac");
+  const Toolpath path = pocketsInTwoSetups();
+  const MachineProgram program = buildMachineProgram(machine, path, shopTools(), "block", turnedSetupOne());
+  ASSERT_EQ(program.mode, PostMode::ThreePlusTwo);
+  ASSERT_EQ(program.setups.size(), 2u);
+  EXPECT_EQ(program.setups[1].tools, (std::vector<int>{1, 2}));
+
+  const std::string job = jobProgramText(program);
+  EXPECT_NE(job.find("M0 (re-fixture for setup 1"), std::string::npos);
+  EXPECT_NE(job.find("(part: block)"), std::string::npos);
+  EXPECT_NE(job.find("T2 M6"), std::string::npos);
+  EXPECT_NE(job.find("G43 H2"), std::string::npos);
+  EXPECT_NE(job.find("M30"), std::string::npos);
+  EXPECT_EQ(job.find("G93"), std::string::npos) << "3+2 cuts never turn a rotary";
+  const Rs274Run run = expectAccepted(job, program, "pockets_job");
+  checkAgainstToolpath(program, path, run, allSetups(program));
+
+  // Setup 1 turns the table once: A -90 (the side face up), and no rotary word while cutting.
+  for (int index = 0; index < 2; ++index) {
+    const Rs274Run alone = expectAccepted(setupProgramText(program, index), program, "pockets_setup");
+    checkAgainstToolpath(program, path, alone, {index});
+  }
+  const std::vector<ExpectedMove> moves = expectedMoves(program, {1});
+  int rotary_moves = 0;
+  for (size_t m = 1; m < moves.size(); ++m)
+    if (moves[m].position[3] != moves[m - 1].position[3] || moves[m].position[5] != moves[m - 1].position[5]) {
+      ++rotary_moves;
+      EXPECT_EQ(moves[m].step->row, -1) << "the rotaries turn only on the way in";
+      EXPECT_NEAR(moves[m].position[2], program.retract_z - program.tool(1).length, 1e-9) << "at the safe height";
+    }
+  EXPECT_EQ(rotary_moves, 1);
+  EXPECT_NEAR(moves.back().position[3], -90, 1e-6);
+}
+
+TEST(Post, RetractToTheSafeHeightBeforeEveryToolChangeAndRotaryMove) {
+  const Machine machine = machineNamed("trunnion_ac");
+  const MachineProgram program =
+      buildMachineProgram(machine, pocketsInTwoSetups(), shopTools(), "block", turnedSetupOne());
+  for (const SetupProgram& setup : program.setups) {
+    JointPosition at = program.start;
+    for (const ProgramStep& step : setup.steps) {
+      const bool turns = step.kind == StepKind::Move && (step.joints.tilt != at.tilt || step.joints.rotary != at.rotary);
+      if (step.kind == StepKind::ToolChange || turns) {
+        EXPECT_EQ(at.linear.z(), program.retract_z);
+      }
+      if (step.kind != StepKind::ToolChange) at = step.joints;
+    }
+    EXPECT_EQ(at.linear.z(), program.retract_z) << "every setup ends at the safe height";
+  }
+  EXPECT_NEAR(program.retract_z, machine.joints[2].max - 1, 1e-12);
+}
+
+TEST(Post, FiveAxisPathPassesRs274WithCContinuousAndInsideTheTravel) {
+  const Machine machine = machineNamed("trunnion_ac");
+  const Toolpath path = fiveAxisPath();
+  const MachineProgram program = buildMachineProgram(machine, path, shopTools(), "circle", {});
+  ASSERT_EQ(program.mode, PostMode::FiveAxis);
+  const std::string job = jobProgramText(program);
+  EXPECT_NE(job.find("G93 G1"), std::string::npos);
+  const Rs274Run run = expectAccepted(job, program, "five_axis");
+  checkAgainstToolpath(program, path, run, {0});
+
+  // C never turns more than a move needs: no move turns it half a turn, and over the circle it turns one whole turn
+  // continuously (past +-180, not wrapped back).
+  double c_min = 1e9, c_max = -1e9;
+  for (size_t m = 1; m < run.moves.size(); ++m) {
+    EXPECT_LT(std::abs(run.moves[m][5] - run.moves[m - 1][5]), 180.0) << "move " << m;
+    c_min = std::min(c_min, run.moves[m][5]);
+    c_max = std::max(c_max, run.moves[m][5]);
+  }
+  EXPECT_GT(c_max - c_min, 359.0);
+  EXPECT_TRUE(c_max > 180.0 || c_min < -180.0) << "C crossed +-180 without a jump";
+}
+
+TEST(Post, FiveAxisMovesKeepTheTipWithinTheChordalToleranceBetweenPoints) {
+  const Machine machine = machineNamed("trunnion_ac");
+  const Toolpath path = fiveAxisPath();
+  PostOptions options;
+  const MachineProgram program = buildMachineProgram(machine, path, shopTools(), "circle", options);
+  const SetupProgram& setup = program.setups[0];
+  Placement placement;
+  placement.fixture = setup.fixture;
+  placement.tool_length = program.tool(1).length;
+  JointPosition at = program.start;
+  int subdivided = 0;
+  for (const ProgramStep& step : setup.steps) {
+    const bool cutting = step.kind == StepKind::Move && step.row > 0 && path[step.row].move == MoveKind::Feed &&
+                         path[step.row - 1].op == path[step.row].op;
+    if (cutting) {
+      if (!step.at_row) ++subdivided;
+      const Vec3& a = path[step.row - 1].tip;
+      const Vec3& b = path[step.row].tip;
+      for (int k = 0; k <= 50; ++k) {  // the joints interpolated linearly, as the controller does
+        const double f = k / 50.0;
+        JointPosition joints;
+        joints.linear = at.linear + f * (step.joints.linear - at.linear);
+        joints.tilt = at.tilt + f * (step.joints.tilt - at.tilt);
+        joints.rotary = at.rotary + f * (step.joints.rotary - at.rotary);
+        const Vec3 tip = forwardKinematics(machine, placement, joints).tip;
+        ASSERT_LT(distanceToSegment(tip, a, b), options.chordal_tolerance * 1.05) << "row " << step.row;
+      }
+    }
+    if (step.kind != StepKind::ToolChange) at = step.joints;
+  }
+  EXPECT_GT(subdivided, 10) << "the moves near the singularity need subdividing";
+}
+
+TEST(Post, SingularPassHoldsC) {
+  const Machine machine = machineNamed("trunnion_ac");
+  const Toolpath path = fiveAxisPath();
+  const MachineProgram program = buildMachineProgram(machine, path, shopTools(), "circle", {});
+  // Op 2 goes straight through the C axis: C stays where it was all along.
+  double c_first = 0;
+  bool seen = false;
+  for (const ProgramStep& step : program.setups[0].steps) {
+    if (step.kind != StepKind::Move || step.row < 0 || path[step.row].op != 2 || path[step.row].move != MoveKind::Feed)
+      continue;
+    if (!seen) c_first = step.joints.rotary, seen = true;
+    EXPECT_NEAR(step.joints.rotary, c_first, 1e-9) << "row " << step.row;
+  }
+  EXPECT_TRUE(seen);
+}
+
+TEST(Post, TableTiltBCPathPassesRs274) {
+  const Machine machine = machineNamed("trunnion_bc");
+  const Toolpath path = fiveAxisPath();
+  const MachineProgram program = buildMachineProgram(machine, path, shopTools(), "circle", {});
+  const Rs274Run run = expectAccepted(jobProgramText(program), program, "five_axis_bc");
+  checkAgainstToolpath(program, path, run, {0});
+}
+
+TEST(Post, ThreeAxisMillRunsItsUprightSetupAndRefusesATiltedOne) {
+  const Machine machine = machineNamed("mill_3axis");
+  Toolpath upright;
+  addPocket(upright, 0, 0, "flat6", Vec3(0, 0, 27), Vec3::UnitZ(), Vec3::UnitX());
+  const MachineProgram program = buildMachineProgram(machine, upright, shopTools(), "block", {});
+  const std::string job = jobProgramText(program);
+  EXPECT_NE(job.find("G10 L2 P1 X0 Y0 Z0\n"), std::string::npos);
+  const Rs274Run run = expectAccepted(job, program, "mill");
+  checkAgainstToolpath(program, upright, run, {0});
+
+  try {
+    buildMachineProgram(machine, pocketsInTwoSetups(), shopTools(), "block", {});
+    FAIL() << "a 3-axis mill cannot tilt the tool";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("toolpaths.csv line 16"), std::string::npos) << message;
+    EXPECT_NE(message.find("setup 1"), std::string::npos) << message;
+    EXPECT_NE(message.find("3-axis machine cannot tilt the tool"), std::string::npos) << message;
+  }
+  PostOptions five;
+  five.mode = PostMode::FiveAxis;
+  EXPECT_THROW(buildMachineProgram(machine, upright, shopTools(), "block", five), InputError);
+}
+
+TEST(Post, UnreachablePosesAndBadInputAreReported) {
+  const Machine machine = machineNamed("trunnion_ac");
+  // An axis pointing down needs |A| > 100 deg on both branches.
+  Toolpath down;
+  down.push_back(point(0, 0, "flat6", MoveKind::Rapid, Vec3(0, 0, 40), Vec3(0, 0.2, -1)));
+  down.push_back(point(0, 0, "flat6", MoveKind::Feed, Vec3(0, 0, 30), Vec3(0, 0.2, -1)));
+  try {
+    buildMachineProgram(machine, down, shopTools(), "part", {});
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no orientation of setup 0 keeps every point inside the travel"),
+              std::string::npos) << e.what();
+  }
+  PostOptions five;
+  five.mode = PostMode::FiveAxis;
+  try {
+    buildMachineProgram(machine, down, shopTools(), "part", five);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("toolpaths.csv line 2 (op 0, setup 0, tool 'flat6'): machine trunnion_ac "
+                                         "cannot reach this tool pose: no solution inside the joint limits"),
+              std::string::npos) << e.what();
+  }
+  Toolpath unknown = pocketsInTwoSetups();
+  unknown[3].tool = "nosuch";
+  EXPECT_THROW(buildMachineProgram(machine, unknown, shopTools(), "part", {}), InputError);
+  Toolpath back_again = pocketsInTwoSetups();
+  back_again.push_back(back_again.front());  // setup 0 again after setup 1
+  EXPECT_THROW(buildMachineProgram(machine, back_again, shopTools(), "part", {}), InputError);
+  PostOptions three;
+  three.mode = PostMode::ThreePlusTwo;
+  EXPECT_THROW(buildMachineProgram(machine, fiveAxisPath(), shopTools(), "part", three), InputError);
+  EXPECT_THROW(buildMachineProgram(machine, {}, shopTools(), "part", {}), InputError);
+}
+
+TEST(Post, ThreePlusTwoTakesTheTurnOfCInsideItsTravel) {
+  Machine machine = machineNamed("trunnion_ac");
+  machine.joints[3].min = 0;            // A 0..50: only the positive branch
+  machine.joints[4].min = 0;            // C 0..360: the nearest turn of -90 is outside, 270 inside
+  machine.joints[4].max = 2 * kPi;
+  Toolpath path;
+  addPocket(path, 0, 0, "flat6", Vec3(0, 0, 20), Vec3(-0.5, 0, std::cos(30 * kDeg)), Vec3::UnitY());
+  const MachineProgram program = buildMachineProgram(machine, path, shopTools(), "part", {});
+  const ProgramStep& last = program.setups[0].steps.back();
+  EXPECT_NEAR(last.joints.tilt, 30 * kDeg, 1e-9);
+  EXPECT_NEAR(last.joints.rotary, 270 * kDeg, 1e-9);
+}
+
+TEST(Post, ToolTablesInMillimetresAndForRs274InInches) {
+  const Machine machine = machineNamed("trunnion_ac");
+  const MachineProgram program = buildMachineProgram(machine, pocketsInTwoSetups(), shopTools(), "block", {});
+  EXPECT_EQ(toolTableText(program, ToolTableUnits::Millimetres),
+            "T1 P1 Z60.000000 D6.000000 ;flat6 flat\nT2 P2 Z60.000000 D6.000000 ;ball6 ball\n");
+  EXPECT_NE(toolTableText(program, ToolTableUnits::Inches).find("T1 P1 Z2.362205 D0.236220"), std::string::npos);
+}
+
+TEST(Post, CommandWritesTheProgramsTheToolTablesAndTheTrajectory) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "art2part_test_post_cli";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  writeToolpathsCsv(pocketsInTwoSetups(), (dir / "toolpaths.csv").string());
+  writeToolsJson(shopTools(), (dir / "tools.json").string());
+  const std::string machine = std::string(ART2PART_SOURCE_DIR) + "/config/machines/trunnion_ac.yaml";
+  const std::string command = std::string(ART2PART_CLI) + " post " + dir.string() + " --machine " + machine +
+                              " --out " + (dir / "out").string() + " --rate 50 > " + (dir / "log").string() + " 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << readFile((dir / "log").string());
+  for (const char* name : {"program.ngc", "setup_0.ngc", "setup_1.ngc", "tool.tbl", "tool_rs274.tbl", "trajectory.csv"})
+    EXPECT_TRUE(std::filesystem::exists(dir / "out" / name)) << name;
+  const std::string csv = readFile((dir / "out" / "trajectory.csv").string());
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "time,X,Y,Z,A,C");
+  const std::string run = "rs274 -g -t " + (dir / "out" / "tool_rs274.tbl").string() + " " +
+                          (dir / "out" / "program.ngc").string() + " " + (dir / "canon").string() + " > /dev/null 2>&1";
+  EXPECT_EQ(std::system(run.c_str()), 0);
+
+  const std::string bad = std::string(ART2PART_CLI) + " post " + dir.string() + " --machine " +
+                          std::string(ART2PART_SOURCE_DIR) + "/config/machines/mill_3axis.yaml --out " +
+                          (dir / "mill").string() + " > " + (dir / "log").string() + " 2>&1";
+  const int status = std::system(bad.c_str());
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  EXPECT_NE(readFile((dir / "log").string()).find("cannot tilt the tool"), std::string::npos);
+}
+
+}  // namespace

@@ -1,0 +1,332 @@
+// Verification (issue 5): hand-made toolpaths on hand-made parts, whose answers are known in closed form.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+
+#include "art2part/geometry/mesh_io.h"
+#include "art2part/simulation/mesh_dexels.h"
+#include "art2part/simulation/stock_mesh.h"
+#include "art2part/simulation/verify.h"
+#include "test_meshes.h"
+
+using namespace art2part;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+Tool endMill(const std::string& id, ToolType type, double diameter, double flutes, double stickout,
+             double holder_diameter = 30, double holder_length = 40) {
+  Tool t;
+  t.id = id;
+  t.type = type;
+  t.diameter = diameter;
+  t.corner_radius = type == ToolType::Ball ? diameter / 2 : (type == ToolType::Bull ? diameter / 6 : 0);
+  t.flute_length = flutes;
+  t.shank_diameter = diameter;
+  t.stickout = stickout;
+  t.holder = {{holder_diameter, holder_length}};
+  return t;
+}
+
+const Tool kFlat = endMill("flat6", ToolType::Flat, 6, 25, 40);
+const Tool kBall = endMill("ball6", ToolType::Ball, 6, 25, 40);
+
+CutterLocation at(const std::string& tool, MoveKind move, double x, double y, double z, Vec3 axis = Vec3::UnitZ()) {
+  CutterLocation c;
+  c.tool = tool;
+  c.move = move;
+  c.tip = Vec3(x, y, z);
+  c.axis = axis.normalized();
+  return c;
+}
+
+// Down from a safe height at `from`, along to `to`, back up: the usual single pass.
+Toolpath pass(const std::string& tool, const Vec3& from, const Vec3& to, double safe_z = 40) {
+  return {at(tool, MoveKind::Rapid, from.x(), from.y(), safe_z), at(tool, MoveKind::Feed, from.x(), from.y(), from.z()),
+          at(tool, MoveKind::Feed, to.x(), to.y(), to.z()), at(tool, MoveKind::Feed, to.x(), to.y(), safe_z)};
+}
+
+// The part of most tests: a 40 x 20 x 10 block at the origin.
+const Mesh kBlock = test::box(Vec3(0, 0, 0), Vec3(40, 20, 10));
+
+VerifyOptions options(double resolution, double margin) {
+  VerifyOptions o;
+  o.resolution = resolution;
+  o.stock_margin = margin;
+  return o;
+}
+
+VerificationReport verify(const Toolpath& path, const Tool& tool, const VerifyOptions& o) {
+  return verifyToolpath(kBlock, {}, path, {tool}, o);
+}
+
+}  // namespace
+
+TEST(MeshDexels, BoxVolumeIsExactEvenWithRaysThroughEdgesAndVertices) {
+  // Rays at 0.25 + 0.5 k pass exactly through the diagonals of the box's faces.
+  const Mesh cube = test::box(Vec3(0, 0, 0), Vec3(10, 10, 10));
+  Box box;
+  box.extend(Vec3(-2, -2, -2));
+  box.extend(Vec3(12, 12, 12));
+  const MeshDexels dexels(cube, DexelLattice::over(box, 0.5));
+  EXPECT_NEAR(dexels.volume(), 1000.0, 1e-9);
+  // Rays through the corner (0, 0) of a face: still one span, not two or none.
+  EXPECT_TRUE(dexels.containsNear(Vec3(0.25, 0.25, 5)));
+  EXPECT_FALSE(dexels.containsNear(Vec3(-0.25, 0.25, 5)));
+  Mesh inside_out = cube;
+  test::flipAll(inside_out);
+  EXPECT_NEAR(MeshDexels(inside_out, dexels.lattice()).volume(), 1000.0, 1e-9);
+}
+
+TEST(ToolSolid, OutlineMatchesToolRadiusAt) {
+  for (Tool tool : {kFlat, kBall, endMill("bull6", ToolType::Bull, 6, 25, 40)}) {
+    tool.shank_diameter = 5;
+    tool.holder = {{30, 20}, {40, 20}};
+    const ToolSolid solid = toolSolid(tool);
+    for (double h = 0.0; h < 85.0; h += 0.37) {
+      EXPECT_NEAR(solid.radiusAt(h), toolRadiusAt(tool, h), 0.002) << tool.id << " at h = " << h;
+      for (const ToolPiece& p : solid.pieces)
+        if (h > p.h0 + 1e-6 && h < p.h1 - 1e-6) {
+          EXPECT_EQ(p.zone, toolZoneAt(tool, h)) << tool.id << " h " << h;
+        }
+    }
+  }
+}
+
+TEST(Simulation, FlatSlotRemovesTheAnalyticVolume) {
+  // A 6 mm slot 3 mm deep and 30 mm long (plus the plunge) in the 5 mm of stock above the block.
+  const auto r = verify(pass("flat6", Vec3(5, 10, 12), Vec3(35, 10, 12)), kFlat, options(0.2, 5));
+  const double expected = 30 * 6 * 3 + kPi * 9 * 3;
+  EXPECT_NEAR(r.removed_volume_mm3, expected, 0.01 * expected);
+  EXPECT_EQ(r.gouges, 0);
+  EXPECT_EQ(r.collisions, 0);
+}
+
+TEST(Simulation, BallSlotRemovesTheAnalyticVolume) {
+  // Ball centre on the stock's top face: the lower half of a capsule, half a cylinder and half a sphere.
+  const auto r = verify(pass("ball6", Vec3(5, 10, 12), Vec3(35, 10, 12)), kBall, options(0.2, 5));
+  const double expected = 0.5 * kPi * 9 * 30 + 2.0 / 3.0 * kPi * 27;
+  EXPECT_NEAR(r.removed_volume_mm3, expected, 0.01 * expected);
+  EXPECT_EQ(r.gouges, 0);
+}
+
+TEST(Simulation, BullSlotAndDrillPlungeRemoveTheAnalyticVolume) {
+  // Bull (corner radius 1): the slot's section is the 6 x 3 rectangle less two corners of (1 - pi/4); the plunge adds
+  // the tool's own volume below the top, a cylinder less the corner ring (Pappus: its centroid sits rc / (6 (1 - pi/4))
+  // in from the corner's outer edge).
+  const Tool bull = endMill("bull6", ToolType::Bull, 6, 25, 40);
+  const double corner_area = 1 - kPi / 4, ring = 2 * kPi * (2 + 1.0 / (6 * corner_area)) * corner_area;
+  const double bull_expected = 30 * (18 - 2 * corner_area) + (kPi * 9 * 3 - ring);
+  const auto b = verify(pass("bull6", Vec3(5, 10, 12), Vec3(35, 10, 12)), bull, options(0.2, 5));
+  EXPECT_NEAR(b.removed_volume_mm3, bull_expected, 0.01 * bull_expected);
+  // A 118-degree drill 5 mm deep: a cylinder and the cone of its point.
+  Tool drill = endMill("drill6", ToolType::Drill, 6, 25, 40);
+  drill.point_angle_deg = 118;
+  const double cone = 3 / std::tan(59 * kPi / 180), drill_expected = kPi * 9 * (5 - cone) + kPi * 9 * cone / 3;
+  const auto d = verify(pass("drill6", Vec3(20, 10, 10), Vec3(20, 10, 10)), drill, options(0.2, 5));
+  EXPECT_NEAR(d.removed_volume_mm3, drill_expected, 0.01 * drill_expected);
+  EXPECT_EQ(d.gouges + d.collisions + b.gouges + b.collisions, 0);
+}
+
+TEST(Simulation, DipIntoThePartIsAGougeOfItsDepth) {
+  for (const Tool& tool : {kFlat, kBall}) {
+    const auto r = verify(pass(tool.id, Vec3(10, 10, 9.95), Vec3(30, 10, 9.95)), tool, options(0.2, 2));
+    EXPECT_GT(r.gouges, 0) << tool.id;
+    EXPECT_NEAR(r.worst_gouge_mm, 0.05, 0.01) << tool.id;
+    ASSERT_FALSE(r.gouge_list.empty());
+    EXPECT_NEAR(r.gouge_list[0].position.z(), 9.95, 0.011);
+    EXPECT_EQ(r.collisions, 0) << tool.id;
+    const auto shallow = verify(pass(tool.id, Vec3(10, 10, 9.995), Vec3(30, 10, 9.995)), tool, options(0.2, 2));
+    EXPECT_EQ(shallow.gouges, 0) << tool.id << " worst " << shallow.worst_gouge_mm;
+  }
+}
+
+TEST(Simulation, GougesGoToTheMovesThatMadeThemAlongAStraightRun) {
+  // Points every 0.5 mm on one line 0.03 mm into the top (swept as one segment). A move gouges when it removes part
+  // material: from when the front of the flat bottom passes 0.01 mm over the edge (the move to x = -2.5) until the
+  // crescent it adds leaves the top (the move to about x = 40, the last slivers as thin as the rays allow).
+  Toolpath path = {at("flat6", MoveKind::Rapid, -10, 10, 40)};
+  for (double x = -10; x <= 50; x += 0.5) path.push_back(at("flat6", MoveKind::Feed, x, 10, 9.97));
+  VerifyOptions o = options(0.2, 2);
+  o.max_listed = 1000;
+  const auto r = verify(path, kFlat, o);
+  EXPECT_NEAR(r.worst_gouge_mm, 0.03, 0.005);
+  int first = 1 << 30, last = 0;
+  for (const GougeRecord& g : r.gouge_list) {
+    first = std::min(first, g.point);
+    last = std::max(last, g.point);
+    EXPECT_NEAR(g.tip.x(), path[g.point].tip.x(), 0.5);
+  }
+  EXPECT_EQ(r.gouges, last - first + 1);  // every move between
+  EXPECT_DOUBLE_EQ(path[first].tip.x(), -2.5);
+  EXPECT_GE(path[last].tip.x(), 39.0);
+  EXPECT_LE(path[last].tip.x(), 40.5);
+}
+
+TEST(Simulation, TiltedDipIsMeasuredAlongTheNormal) {
+  // The block, the path and the tool axis turned together, so no family of rays runs along the face's normal.
+  const Eigen::Matrix3d turn =
+      (Eigen::AngleAxisd(0.5, Vec3::UnitX()) * Eigen::AngleAxisd(0.3, Vec3::UnitY())).toRotationMatrix();
+  Mesh block = kBlock;
+  for (Vec3& v : block.vertices) v = turn * v;
+  for (const Tool& tool : {kFlat, kBall}) {
+    Toolpath path = pass(tool.id, Vec3(10, 10, 9.95), Vec3(30, 10, 9.95));
+    for (CutterLocation& c : path) {
+      c.tip = turn * c.tip;
+      c.axis = turn * c.axis;
+    }
+    const auto r = verifyToolpath(block, {}, path, {tool}, options(0.25, 2));
+    EXPECT_NEAR(r.worst_gouge_mm, 0.05, 0.01) << tool.id;
+    EXPECT_EQ(r.collisions, 0) << tool.id;
+  }
+}
+
+TEST(Simulation, HolderTouchingTheStockIsACollision) {
+  // 10 mm deep in the 10 mm margin beside the block, clear of it; the holder's face sits 8 mm above the tip.
+  const Tool short_tool = endMill("short", ToolType::Flat, 6, 8, 8);
+  const auto r = verify(pass("short", Vec3(5, -5, 10), Vec3(35, -5, 10)), short_tool, options(0.25, 10));
+  EXPECT_EQ(r.gouges, 0);
+  ASSERT_GT(r.collisions, 0);
+  EXPECT_EQ(r.collision_list[0].kind, CollisionKind::Holder);
+  EXPECT_NEAR(r.worst_collision_mm, 2.0, 0.05);
+  // Flutes 8 mm long on a long shank: the shank rubs instead.
+  const Tool shank_tool = endMill("shank", ToolType::Flat, 6, 8, 30);
+  const auto s = verify(pass("shank", Vec3(5, -5, 10), Vec3(35, -5, 10)), shank_tool, options(0.25, 10));
+  ASSERT_GT(s.collisions, 0);
+  EXPECT_EQ(s.collision_list[0].kind, CollisionKind::Shank);
+}
+
+TEST(Simulation, RapidThroughTheStockIsACollision) {
+  Toolpath path = {at("flat6", MoveKind::Rapid, -20, -5, 40), at("flat6", MoveKind::Rapid, -20, -5, 5),
+                   at("flat6", MoveKind::Rapid, 60, -5, 5)};
+  const auto r = verify(path, kFlat, options(0.25, 10));
+  ASSERT_GT(r.collisions, 0);
+  EXPECT_EQ(r.collision_list[0].kind, CollisionKind::Rapid);
+  EXPECT_EQ(r.collision_list[0].point, 2);
+}
+
+TEST(Simulation, CleanPathAroundAndAboveThePartPasses) {
+  // A contour touching the block's walls exactly, then a facing pass 0.2 mm above its top.
+  const double R = 3;
+  Toolpath path = {at("flat6", MoveKind::Rapid, -R, -R, 40)};
+  for (const Vec3& p : {Vec3(-R, -R, 0.5), Vec3(40 + R, -R, 0.5), Vec3(40 + R, 20 + R, 0.5), Vec3(-R, 20 + R, 0.5),
+                        Vec3(-R, -R, 0.5), Vec3(-R, -R, 40)})
+    path.push_back(at("flat6", MoveKind::Feed, p.x(), p.y(), p.z()));
+  path.push_back(at("flat6", MoveKind::Rapid, -R, -1, 40));
+  for (double y = -1; y <= 21; y += 4) {
+    path.push_back(at("flat6", MoveKind::Feed, -R, y, 10.2));
+    path.push_back(at("flat6", MoveKind::Feed, 40 + R, y, 10.2));
+  }
+  const auto r = verify(path, kFlat, options(0.2, 2));
+  EXPECT_EQ(r.gouges, 0) << r.worst_gouge_mm;
+  EXPECT_EQ(r.collisions, 0) << r.worst_collision_mm;
+  EXPECT_TRUE(r.passed());
+  // What is left: the 0.2 mm skin on top and the 2.5 mm of margin under the contour, thickest at the bottom corners
+  // (2 mm out in x, y and z: 2 sqrt(3), less half a cell).
+  EXPECT_GT(r.leftover_volume_mm3, 0.2 * 40 * 20 + 2 * 40 * 20);
+  EXPECT_NEAR(r.leftover_max_mm, 2 * std::sqrt(3.0), 0.25);
+  ASSERT_FALSE(r.regions.empty());
+  EXPECT_NEAR(r.regions[0].box.min.z(), -2, 1e-9);
+}
+
+TEST(Simulation, TiltingMoveSweepsWithoutGaps) {
+  // 20 mm along x while the axis tilts 40 degrees: the holder-length lever makes the fine sub-steps matter.
+  const double a = 40 * kPi / 180;
+  Toolpath path = {at("flat6", MoveKind::Rapid, 5, -5, 40), at("flat6", MoveKind::Feed, 5, -5, 5),
+                   at("flat6", MoveKind::Feed, 25, -5, 5, Vec3(std::sin(a), 0, std::cos(a)))};
+  VerifyOptions o = options(0.25, 10);
+  const auto normal = verify(path, kFlat, o);
+  o.step_fraction = 0.05;
+  const auto fine = verify(path, kFlat, o);
+  o.step_fraction = 4;  // eight times the bound: the sweep leaves ridges
+  const auto coarse = verify(path, kFlat, o);
+  EXPECT_GT(fine.poses, 5 * normal.poses);
+  EXPECT_NEAR(normal.removed_volume_mm3, fine.removed_volume_mm3, 0.0005 * fine.removed_volume_mm3);
+  EXPECT_GT(std::abs(coarse.removed_volume_mm3 - fine.removed_volume_mm3), 0.001 * fine.removed_volume_mm3);
+  EXPECT_EQ(normal.gouges, 0);
+}
+
+TEST(Simulation, ThreadCountDoesNotChangeTheResult) {
+  const Toolpath path = pass("ball6", Vec3(10, 10, 9.9), Vec3(30, 12, 9.9));
+  VerifyOptions o = options(0.3, 2);
+  o.threads = 1;
+  const auto one = verify(path, kBall, o);
+  o.threads = 3;
+  const auto three = verify(path, kBall, o);
+  EXPECT_DOUBLE_EQ(one.removed_volume_mm3, three.removed_volume_mm3);
+  EXPECT_DOUBLE_EQ(one.worst_gouge_mm, three.worst_gouge_mm);
+  EXPECT_EQ(one.gouges, three.gouges);
+}
+
+TEST(Simulation, RemainingStockMeshIsClosedAndMeasuresTheStock) {
+  VerificationState state;
+  const auto r = verifyToolpath(kBlock, {}, pass("flat6", Vec3(5, 10, 12), Vec3(35, 10, 12)), {kFlat},
+                                options(0.25, 5), &state);
+  const PartDistance distance(kBlock);
+  const StockMesh m = remainingStockMesh(state.stock, state.part, distance, 400);
+  EXPECT_NEAR(signedVolume(m.mesh), r.remaining_volume_mm3, 0.01 * r.remaining_volume_mm3);
+  ASSERT_EQ(m.deviation.size(), m.mesh.triangles.size());
+  EXPECT_NEAR(*std::max_element(m.deviation.begin(), m.deviation.end()), 5 * std::sqrt(3.0), 0.3);
+}
+
+namespace {
+
+struct CliRun {
+  int status = -1;
+  std::string out, err;
+};
+
+CliRun runCli(const std::string& arguments) {
+  const std::string dir = test::tempDir();
+  const std::string command = std::string(ART2PART_CLI) + " " + arguments + " > " + dir + "/out 2> " + dir + "/err";
+  CliRun r;
+  const int raw = std::system(command.c_str());
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  auto slurp = [](const std::string& path) {
+    std::ifstream in(path);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  r.out = slurp(dir + "/out");
+  r.err = slurp(dir + "/err");
+  return r;
+}
+
+std::string planDir(const Toolpath& path, const Tool& tool) {
+  const std::string dir = test::tempDir();
+  writeToolpathsCsv(path, dir + "/toolpaths.csv");
+  writeToolsJson({tool}, dir + "/tools.json");
+  writeBinaryStl(kBlock, dir + "/mesh.stl");
+  return dir;
+}
+
+}  // namespace
+
+TEST(VerifyCli, CleanDirPassesAndGougingDirFails) {
+  const std::string clean = planDir(pass("flat6", Vec3(5, 10, 12), Vec3(35, 10, 12)), kFlat);
+  const CliRun ok = runCli("verify " + clean + " --resolution 0.25 --picture " + clean + "/stock.png --stock-out " +
+                           clean + "/stock.stl");
+  ASSERT_EQ(ok.status, 0) << ok.err;
+  const auto j = nlohmann::json::parse(ok.out);
+  for (const char* field : {"gouges", "worst_gouge_mm", "collisions", "leftover_volume_mm3", "leftover_max_mm"})
+    EXPECT_TRUE(j.contains(field)) << field;
+  EXPECT_EQ(j["gouges"], 0);
+  EXPECT_TRUE(std::ifstream(clean + "/stock.png").good());
+  EXPECT_GT(readMeshFile(clean + "/stock.stl").triangleCount(), 100);
+
+  const std::string gouging = planDir(pass("flat6", Vec3(10, 10, 9.9), Vec3(30, 10, 9.9)), kFlat);
+  const CliRun bad = runCli("verify " + gouging + " --resolution 0.25");
+  EXPECT_EQ(bad.status, 1) << bad.err;
+  const auto b = nlohmann::json::parse(bad.out);
+  EXPECT_GT(b["gouges"].get<int>(), 0);
+  EXPECT_NEAR(b["worst_gouge_mm"].get<double>(), 0.1, 0.01);
+
+  const CliRun missing = runCli("verify /nonexistent-dir");
+  EXPECT_EQ(missing.status, 1);
+  EXPECT_EQ(std::count(missing.err.begin(), missing.err.end(), '\n'), 1) << missing.err;
+  EXPECT_EQ(runCli("verify").status, 2);
+}
