@@ -2,6 +2,7 @@
 #include "art2part/render/offscreen_context.h"
 
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 
 namespace art2part {
@@ -24,6 +25,11 @@ const char* glErrorName(GLenum error) {
   }
 }
 
+std::mutex& contextLifetimeMutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
 }  // namespace
 
 OffscreenContext::OffscreenContext(int major_version, int minor_version)
@@ -44,7 +50,12 @@ OffscreenContext::OffscreenContext(int major_version, int minor_version)
                             OSMESA_CONTEXT_MINOR_VERSION,
                             minor_version,
                             0};
-  context_ = OSMesaCreateContextAttribs(attributes, nullptr);
+  {
+    // Mesa's context creation and destruction touch process-wide state (the GL dispatch, llvmpipe's screen):
+    // worker threads creating or dropping their contexts at once crashed now and then. One at a time.
+    std::lock_guard<std::mutex> lock(contextLifetimeMutex());
+    context_ = OSMesaCreateContextAttribs(attributes, nullptr);
+  }
   if (!context_) {
     throw std::runtime_error(
         "OSMesa could not create an OpenGL " + std::to_string(major_version) + "." +
@@ -59,6 +70,7 @@ OffscreenContext::~OffscreenContext() {
   // Unbind first if this context is current here, so the thread is not left
   // pointing at a destroyed context.
   if (OSMesaGetCurrentContext() == context_) releaseCurrent();
+  std::lock_guard<std::mutex> lock(contextLifetimeMutex());
   OSMesaDestroyContext(context_);
 }
 
