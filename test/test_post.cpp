@@ -296,6 +296,7 @@ TEST(Post, ThreePlusTwoPocketsInTwoSetupsPassRs274AndLandOnTheToolpath) {
   EXPECT_NE(job.find("G43 H2"), std::string::npos);
   EXPECT_NE(job.find("M30"), std::string::npos);
   EXPECT_EQ(job.find("G93"), std::string::npos) << "3+2 cuts never turn a rotary";
+  EXPECT_NE(job.find("G94 G64 P0.0050\n"), std::string::npos) << "3+2 blends X Y Z corners within the tolerance";
   const Rs274Run run = expectAccepted(job, program, "pockets_job");
   checkAgainstToolpath(program, path, run, allSetups(program));
 
@@ -341,6 +342,9 @@ TEST(Post, FiveAxisPathPassesRs274WithCContinuousAndInsideTheTravel) {
   ASSERT_EQ(program.mode, PostMode::FiveAxis);
   const std::string job = jobProgramText(program);
   EXPECT_NE(job.find("G93 G1"), std::string::npos);
+  // Exact path: LinuxCNC's G64 P would blend only the X Y Z joints within P (test/linuxcnc/run_sim_test.sh measures it).
+  EXPECT_NE(job.find("G94 G61\n"), std::string::npos);
+  EXPECT_EQ(job.find("G64"), std::string::npos);
   const Rs274Run run = expectAccepted(job, program, "five_axis");
   checkAgainstToolpath(program, path, run, {0});
 

@@ -1,7 +1,9 @@
 // G-code for LinuxCNC 2.9 (rs274ngc) from a MachineProgram, and the tool table it needs.
 //
 // Each program: a header of comments (part, setup(s) and their fixtures, machine and kinematics, mode, tools), the
-// modal set-up `G21 G17 G40 G49 G80 G90 G94 G64 P..`, G54 set to zero and G92 cancelled, then the steps:
+// modal set-up `G21 G17 G40 G49 G80 G90 G94` with the path mode (3+2: `G64 P<chordal tolerance>`; 5-axis: `G61`, exact
+// path, since under identity kinematics G64 P bounds only the X Y Z joints' blends, not the rotaries nor the tip), G54
+// set to zero and G92 cancelled, then the steps:
 //   retract     G53 G0 Z<retract_z>                       (machine Z of the gauge point)
 //   tool change M9 / M5 / T<n> M6 / G43 H<n> / S<rpm> M3 / M8
 //   rapid       G0 X Y Z A C                               (only the words that change)
