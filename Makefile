@@ -32,7 +32,8 @@ demo: build
 	$(BIN)/art2part visibility $(EXAMPLE) --out $(OUT) --picture $(OUT)/cones.png | tee $(OUT)/visibility.txt
 	$(BIN)/art2part plan $(EXAMPLE) --out $(OUT) | tee $(OUT)/plan.txt
 	@echo "demo: results in $(OUT): part.txt part.json part.png, mesh.stl directions.csv visibility.bits cones.png," \
-	  "plan.txt plan.json setups.png"
+	  "plan.txt plan.json setups.png toolpaths.csv tools.json program.ngc (setup_<k>.ngc, tool.tbl, trajectory.csv)" \
+	  "remaining.png"
 
 # All tests: gtest per stage and rostest integration, through ctest (catkin_make run_tests exits 0 on failures).
 test: build

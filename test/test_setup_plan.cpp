@@ -437,11 +437,29 @@ TEST(SetupCli, PlanWritesPlanJsonWithTheSetups) {
   }
   EXPECT_EQ(j["part"]["triangles"], s["triangles"]);
   EXPECT_EQ(j["directions"].size(), readDirections(dir + "/directions.csv").size());
-  EXPECT_TRUE(j["operations"].is_array());
-  EXPECT_TRUE(j["verification"].is_null());
-  for (const char* stage : {"load", "visibility", "setups"}) EXPECT_TRUE(j["timings"].contains(stage)) << stage;
-  for (const char* file : {"setups.png", "mesh.stl", "visibility.bits"})
+  // Roughing, verified: every operation in plan.json, the simulation's verdict beside them (issue 6).
+  ASSERT_TRUE(j["operations"].is_array());
+  EXPECT_FALSE(j["operations"].empty());
+  ASSERT_TRUE(j["verification"].is_object());
+  for (const char* figure : {"gouges", "collisions", "passed", "removed_volume_mm3", "leftover_volume_mm3"})
+    EXPECT_TRUE(j["verification"].contains(figure)) << figure;
+  // Zero gouges and collisions on this part is issue 6's figure, not reached yet: DISABLED_PlanOnTheExampleIsClean.
+  for (const char* stage : {"load", "visibility", "setups", "roughing", "verification", "post"})
+    EXPECT_TRUE(j["timings"].contains(stage)) << stage;
+  for (const char* file : {"setups.png", "mesh.stl", "visibility.bits", "toolpaths.csv", "tools.json", "program.ngc",
+                           "remaining.png"})
     EXPECT_TRUE(std::ifstream(dir + "/" + file).good()) << file;
+}
+
+// Issue 6, open: the example's roughing plan has gouges (536 at the 3.1 mm lattice, up to ~0.4 mm deep, in the flat20
+// operations) and collisions (28) that the L part and featuretype do not show. Enable when fixed.
+TEST(SetupCli, DISABLED_PlanOnTheExampleIsClean) {
+  const std::string dir = test::tempDir();
+  const CliRun plan = runCli("plan " + kExample + " --out " + dir + " --level 2");
+  ASSERT_EQ(plan.status, 0) << plan.err;
+  const auto j = nlohmann::json::parse(slurp(dir + "/plan.json"));
+  EXPECT_EQ(j["verification"]["gouges"], 0);
+  EXPECT_EQ(j["verification"]["collisions"], 0);
 }
 
 // --- inputs, options and the report ----------------------------------------------------------------------------

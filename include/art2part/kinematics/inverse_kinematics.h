@@ -19,14 +19,9 @@
 #include <vector>
 
 #include "art2part/kinematics/machine.h"
+#include "art2part/tooling/tool.h"
 
 namespace art2part {
-
-// A tool pose: tip (mm) and unit axis from the tip towards the spindle; in the part frame unless named otherwise.
-struct ToolPose {
-  Vec3 tip = Vec3::Zero();
-  Vec3 axis = Vec3::UnitZ();
-};
 
 // What the kinematics needs besides the machine: where the part sits and how long the tool is.
 struct Placement {

@@ -3,6 +3,7 @@
 // construction.
 #pragma once
 
+#include <limits>
 #include <memory>
 
 #include "art2part/geometry/mesh.h"
@@ -16,8 +17,10 @@ class PartDistance {
   PartDistance(const PartDistance&) = delete;
   PartDistance& operator=(const PartDistance&) = delete;
 
-  // Unsigned distance to the nearest triangle (infinity for an empty mesh); `triangle` gets that triangle.
-  double distance(const Vec3& point, int* triangle = nullptr) const;
+  // Unsigned distance to the nearest triangle (infinity for an empty mesh); `triangle` gets that triangle. With
+  // `max_distance`, triangles farther than it are not searched (infinity when none is nearer): much faster far away.
+  double distance(const Vec3& point, int* triangle = nullptr,
+                  double max_distance = std::numeric_limits<double>::infinity()) const;
 
  private:
   struct Scene;

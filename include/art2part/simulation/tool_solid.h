@@ -34,12 +34,6 @@ struct ToolSolid {
 // Throws InputError (checkTool) for a tool that cannot exist.
 ToolSolid toolSolid(const Tool& tool, double chord_tolerance = 0.001);
 
-// A tool placed in the part frame: tip and unit axis (tip towards spindle).
-struct ToolPose {
-  Vec3 tip = Vec3::Zero();
-  Vec3 axis = Vec3::UnitZ();
-};
-
 // A piece at a pose, prepared for the rays of one family: what depends on the ray alone is a few products and one
 // root, the rest is computed once per pose.
 class PieceOnRays {

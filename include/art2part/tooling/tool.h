@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "art2part/geometry/mesh.h"
+
 namespace art2part {
 
 enum class ToolType { Flat, Ball, Bull, Drill };
@@ -49,6 +51,13 @@ ToolZone toolZoneAt(const Tool& tool, double h);
 // Throws InputError naming the tool and the field for a tool that cannot exist (negative sizes, a corner radius above
 // the radius, stickout shorter than the flutes, a holder narrower than the shank at its face, ...).
 void checkTool(const Tool& tool);
+
+// A tool placed in space: tip (mm) and unit axis from the tip towards the spindle; in the part frame unless named
+// otherwise (the kinematics and the simulation share it).
+struct ToolPose {
+  Vec3 tip = Vec3::Zero();
+  Vec3 axis = Vec3::UnitZ();
+};
 
 struct ToolLibrary {
   std::vector<Tool> tools;

@@ -92,7 +92,7 @@ PartDistance::~PartDistance() {
   if (scene_->device) rtcReleaseDevice(scene_->device);
 }
 
-double PartDistance::distance(const Vec3& point, int* triangle) const {
+double PartDistance::distance(const Vec3& point, int* triangle, double max_distance) const {
   Nearest nearest{scene_->mesh, point};
   if (scene_->scene) {
     RTCPointQuery query;
@@ -101,7 +101,7 @@ double PartDistance::distance(const Vec3& point, int* triangle) const {
     query.y = static_cast<float>(local.y());
     query.z = static_cast<float>(local.z());
     query.time = 0.0f;
-    query.radius = std::numeric_limits<float>::infinity();
+    query.radius = std::isfinite(max_distance) ? static_cast<float>(max_distance) : std::numeric_limits<float>::infinity();
     RTCPointQueryContext context;
     rtcInitPointQueryContext(&context);
     rtcPointQuery(scene_->scene, &query, &context, visitTriangle, &nearest);

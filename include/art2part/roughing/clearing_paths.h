@@ -1,0 +1,73 @@
+// Clearing one slab (thesis 4.1.2 step 7, 5.1): zig-zag passes and a contour pass over the region the tool centre may
+// sweep at one level, linked inside that region or over a clearance plane, entered by a ramp (or straight down where
+// the tool meets no stock). Everything here is in a setup frame: x, y in the slice plane, z along the tool axis (up).
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "art2part/roughing/region.h"
+
+namespace art2part {
+
+enum class ClearingMove {
+  Rapid,    // positioning in air (clearance plane, or straight down over cleared material)
+  Feed,     // cutting at the level
+  Ramp,     // descending into material along the path at the ramp angle
+  Plunge,   // straight down at the plunge feed: where the tool meets no stock (`air`), or with no room to ramp
+};
+
+struct ClearingPoint {
+  Eigen::Vector3d tip;  // setup frame, mm: where the move ends
+  ClearingMove move = ClearingMove::Feed;
+};
+
+struct ClearingLevel {
+  double z = 0;          // the level: tool tip height of every cutting move
+  double top = 0;        // the top of the slab: above it, every point of `centre` has been cleared already
+  Region centre;         // where the tool centre may go at this level and everything in it is to be cleared
+  Region air;            // where the tool centre may plunge straight down (its disc meets no stock in the slab)
+};
+
+struct ClearingOptions {
+  double stepover = 4;          // mm between zig-zag passes
+  double angle_deg = 0;         // zig-zag direction in the slice plane, from the frame's x axis
+  double ramp_angle_deg = 3;    // entries: the slope of the ramp
+  double safe_height = 1;       // mm above `top` where a rapid descent stops and the ramp starts
+  double clearance_z = 0;       // the clearance plane (above all stock): links that leave `centre` retract to it
+  double min_segment = 0.05;    // mm: zig-zag intervals shorter than this are dropped
+  bool contour_pass = true;     // a pass along every ring of `centre` after the zig-zag
+};
+
+// The moves that clear `level.centre`. Each connected piece of it gets zig-zag lines along the direction,
+// `stepover` apart and centred over the piece's extent across them (a piece left with no interval gets one line, at
+// the widest of a few heights), cut into intervals by the region (shorter than min_segment: dropped). Intervals are chained into
+// boustrophedon passes: from the end of one, to the unused interval on the next line whose end that alternates the
+// direction is nearest, joined by a feed along a straight segment in `centre` or else along the ring between them
+// (round an island); where there is none, the pass ends and the next one starts at the lowest unused interval, after a
+// retract to the clearance plane, a rapid above the start and a rapid down to top + safe_height. A pass starts at an
+// end in `air` if it has one, and is entered there by a plunge; elsewhere by a ramp at ramp_angle_deg forth and back
+// along its first interval (or its first 0.5 mm, or a short segment in `centre`; failing all, a plunge counted in
+// plunges_into_stock), stopping where it reaches z and feeding back to the start. Then, if asked, each ring of
+// `centre` (perimeter at least min_segment), nearest first, followed once at z from its vertex nearest the tool:
+// joined by a feed where the straight way lies in `centre`, else entered by a ramp round the ring itself, the lap
+// then running from where the ramp reached z back to there. With the contour pass every point of `centre` lies within
+// stepover/2 (+ min_segment) of a feed at z.
+// The first point is a rapid at the clearance plane; the last is a retract to it; sideways rapids are at the
+// clearance plane only. Every Feed/Ramp/Plunge point lies in `centre` (x, y) at a height in [z, top + safe_height];
+// every cutting segment lies in `centre` (to within the region grid); nothing descends more steeply than the ramp
+// angle but plunges. `stats`, if given, is added to.
+struct ClearingStats {
+  int passes = 0, contours = 0;    // zig-zag passes and contour passes
+  int ramps = 0;                   // entries by a ramp
+  int plunges_in_air = 0;          // straight down where the tool meets no stock
+  int plunges_into_stock = 0;      // straight down into stock: only for a pass too short to ramp along
+  int retracts = 0;                // rapids up to the clearance plane, the last one included
+};
+std::vector<ClearingPoint> clearLevel(const ClearingLevel& level, const ClearingOptions& options,
+                                      ClearingStats* stats = nullptr);
+
+// Figures of a list of moves.
+double clearingLength(const std::vector<ClearingPoint>& moves, bool cutting);  // mm of Feed+Ramp+Plunge, or Rapid
+
+}  // namespace art2part

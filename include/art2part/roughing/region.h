@@ -1,0 +1,49 @@
+// Planar regions for roughing (thesis 4.1.2): sets of points in a slice plane as Clipper polygons (Debian's
+// libpolyclipping 6.4), outer rings counter-clockwise and holes clockwise, in integer units of 0.1 um. Union,
+// difference, intersection and round offsets by a tool radius are Clipper's; the rest (area, point and segment tests,
+// conversion to mm) is here.
+#pragma once
+
+#include <Eigen/Core>
+#include <polyclipping/clipper.hpp>
+#include <vector>
+
+namespace art2part {
+
+using Point2 = Eigen::Vector2d;
+using Ring = std::vector<Point2>;   // a closed polygon in mm, last point not repeated
+using Region = ClipperLib::Paths;   // a set of points: rings in integer units (kRegionScale per mm)
+
+constexpr double kRegionScale = 1e4;  // integer units per mm
+
+ClipperLib::IntPoint toRegionPoint(const Point2& p);
+Point2 fromRegionPoint(const ClipperLib::IntPoint& p);
+
+// The union of polygons of any orientation (each counts as filled, whatever its winding).
+Region regionFromPolygons(const std::vector<Ring>& polygons);
+std::vector<Ring> regionRings(const Region& region);  // mm; outer rings CCW, holes CW
+
+Region unite(const Region& a, const Region& b);
+Region subtract(const Region& a, const Region& b);
+Region intersect(const Region& a, const Region& b);
+// Minkowski sum with a disc of radius `mm` (negative: erosion), round joins followed within 1 um.
+Region offsetRegion(const Region& region, double mm);
+// Drops rings whose area is below `min_area_mm2` (slivers left by offsets), with their holes.
+Region dropSlivers(const Region& region, double min_area_mm2);
+
+double regionArea(const Region& region);  // mm^2, holes subtracted
+bool regionEmpty(const Region& region);
+// Inside or on the boundary.
+bool regionContains(const Region& region, const Point2& p);
+// The whole segment a-b lies in the region (boundary included): cut wherever it meets a ring (crossing, touching a
+// vertex, running along an edge), the middle of each piece is inside, or the piece runs along an edge.
+bool segmentInside(const Region& region, const Point2& a, const Point2& b);
+
+// Outer rings with their holes: the connected pieces of a region (Clipper's PolyTree).
+struct RegionPiece {
+  Region rings;  // the outer ring first, then its holes
+  double area_mm2 = 0;
+};
+std::vector<RegionPiece> regionPieces(const Region& region);
+
+}  // namespace art2part

@@ -1,0 +1,93 @@
+// Global roughing, 3-axis per setup (thesis 4.1, 5.1-5.2): the stock cleared around the part slab by slab from each
+// setup's direction. At each level the tool centre may go where its disc, grown by the finishing allowance, meets no
+// part material at or above the level (the shadow, offset by Clipper), where its shank and holder meet neither the
+// part nor stock left above, and nowhere a level above forbade (so the column over every cutting point is clear);
+// that region is cleared by zig-zag and contour passes (clearing_paths.h). Levels: a regular step-down plus the
+// critical heights of the thesis's future work (every flat face square to the direction gets a level at its height
+// plus the allowance). Tools: the largest flat or bull mill whose regions clear nearly what the smallest one does,
+// then a rest pass with a smaller tool over what the first left.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "art2part/geometry/part.h"
+#include "art2part/roughing/clearing_paths.h"
+#include "art2part/setup/setup_plan.h"
+#include "art2part/tooling/tool.h"
+#include "art2part/tooling/toolpath.h"
+
+namespace art2part {
+
+struct RoughingOptions {
+  double allowance = 0.3;       // mm left on the part for finishing
+  double stepdown = 0;          // mm between levels; 0 = the tool's max_stepdown (never above its flute length)
+  double stepover = 0;          // mm between zig-zag passes; 0 = the tool's max_stepover
+  double stock_margin = 2.0;    // mm around the part's box (the verification's default), when no stock mesh is given
+  const Mesh* stock_mesh = nullptr;  // the raw stock instead (its convex hull per slab is cleared)
+  double clearance = 5.0;       // mm above the stock's top: the retract plane of each setup
+  double holder_margin = 0.5;   // mm kept between shank or holder and material
+  double ramp_angle_deg = 3.0;  // entries into stock
+  bool critical_heights = true;
+  double critical_angle_deg = 0.5;  // a flat face within this of square to the direction gets a level
+  std::string tool;             // a tool id to use instead of choosing; empty = choose
+  bool rest_pass = true;        // smaller tools over what the first left
+  int rest_passes = 1;          // at most this many, each tool at most half the previous one
+  double tool_area_fraction = 0.85;  // the largest tool clearing at least this fraction of the best area
+  double rapid_mm_min = 10000;  // for time estimates
+};
+
+struct RoughingLevel {
+  double z = 0;               // setup frame, mm
+  bool critical = false;      // at a flat face's height (+ allowance)
+  double cleared_mm2 = 0;     // area the tool sweeps at this level (centre region grown by the radius, in stock)
+  double remaining_mm2 = 0;   // stock left in the slab above this level, part section included
+  int rings = 0;              // rings of the centre region (machinable contours, offset)
+};
+
+struct RoughingOperation {
+  int setup = 0;
+  std::string kind;           // "roughing" | "rest roughing"
+  std::string tool;
+  Toolpath path;              // in the part frame; op numbers are set by the caller
+  std::vector<RoughingLevel> levels;
+  double feed_mm = 0, rapid_mm = 0, seconds = 0;  // length and estimated time
+  int ramps = 0, plunges = 0, retracts = 0;  // ramp entries, straight entries into stock (passes too short to ramp), retracts
+  double plan_seconds = 0;
+};
+
+struct RoughingPlan {
+  std::vector<RoughingOperation> operations;
+  double seconds = 0;
+  int contours = 0;           // rings of centre regions over all levels
+};
+
+// One operation: `tool` clears the stock of one setup top-down; `before`, if given, is what a previous operation
+// left (per level of `before_levels`, remaining stock regions) and restricts this one to it.
+struct SlabState {
+  double z = 0, top = 0;
+  Region remaining;           // stock left in the slab [z, top] after the operation (part section included)
+};
+RoughingOperation roughSetup(const Part& part, const Setup& setup, int setup_index, const Tool& tool,
+                             const RoughingOptions& options, const std::vector<SlabState>* before = nullptr,
+                             std::vector<SlabState>* after = nullptr);
+
+// The levels of a setup for a tool: stock top down to the stock's bottom, at most `stepdown` apart, plus critical
+// heights; highest first. `frame_vertices` are the part's vertices in the setup frame.
+std::vector<RoughingLevel> roughingLevels(const Part& part, const std::vector<Vec3>& frame_vertices,
+                                          double stock_top, double stock_bottom, double stepdown,
+                                          const RoughingOptions& options);
+
+// The tools a roughing operation may use (flat and bull end mills), largest first; and the choice for one setup.
+std::vector<const Tool*> roughingTools(const ToolLibrary& library);
+const Tool* chooseRoughingTool(const Part& part, const Setup& setup, const std::vector<const Tool*>& candidates,
+                               const RoughingOptions& options);
+
+// Every setup, main and rest operations. Throws InputError for a tool id that the library lacks or that cannot rough.
+RoughingPlan planRoughing(const Part& part, const SetupPlan& setups, const ToolLibrary& library,
+                          const RoughingOptions& options = {});
+
+// The stock of the plan in the part frame: the part's box grown by the margin, or the stock mesh.
+Mesh roughingStock(const Part& part, const RoughingOptions& options);
+
+}  // namespace art2part

@@ -1,0 +1,519 @@
+// Clearing one slab: zig-zag passes per connected piece of the centre region, a contour pass over its rings, ramped
+// or plunged entries. See clearing_paths.h for the contract.
+#include "art2part/roughing/clearing_paths.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace art2part {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kMinRampRun = 0.5;            // mm: a path shorter than this is no ramp
+constexpr double kInset = 3.0 / kRegionScale;  // mm a point on a ring edge is moved into the region before rounding
+constexpr int kProbeDirections = 16;           // directions tried for a ramp where the pass itself is too short
+
+using Polyline = std::vector<Point2>;
+
+double cross(const Point2& a, const Point2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+double pathLength(const Polyline& path) {
+  double length = 0;
+  for (std::size_t i = 1; i < path.size(); ++i) length += (path[i] - path[i - 1]).norm();
+  return length;
+}
+
+double ringPerimeter(const Polyline& ring) {
+  return ring.empty() ? 0 : pathLength(ring) + (ring.back() - ring.front()).norm();
+}
+
+// The point at `t` along the ring edge a-b, moved inwards (a region lies left of its edges, outer rings and holes
+// alike) and rounded to the region's grid: strictly inside that edge whatever the rounding, so regionContains holds.
+Point2 insetOnEdge(const Point2& a, const Point2& b, double t) {
+  const Point2 d = b - a;
+  const Point2 left(-d.y(), d.x());
+  return fromRegionPoint(toRegionPoint(a + t * d + kInset / d.norm() * left));
+}
+
+// The closed segments a-b and p-q meet, touching included: links that graze the boundary count as blocked.
+bool segmentsMeet(const Point2& a, const Point2& b, const Point2& p, const Point2& q) {
+  if (std::max(p.x(), q.x()) < std::min(a.x(), b.x()) || std::min(p.x(), q.x()) > std::max(a.x(), b.x()) ||
+      std::max(p.y(), q.y()) < std::min(a.y(), b.y()) || std::min(p.y(), q.y()) > std::max(a.y(), b.y()))
+    return false;
+  const double o1 = cross(b - a, p - a), o2 = cross(b - a, q - a);
+  const double o3 = cross(q - p, a - p), o4 = cross(q - p, b - p);
+  return !((o1 > 0 && o2 > 0) || (o1 < 0 && o2 < 0) || (o3 > 0 && o4 > 0) || (o3 < 0 && o4 < 0));
+}
+
+// The scan frame: zig-zag lines run along u, at constant v.
+struct ScanFrame {
+  double c = 1, s = 0;
+  explicit ScanFrame(double angle_deg) : c(std::cos(angle_deg * kPi / 180)), s(std::sin(angle_deg * kPi / 180)) {}
+  Point2 toScan(const Point2& p) const { return Point2(c * p.x() + s * p.y(), -s * p.x() + c * p.y()); }
+  Point2 fromScan(const Point2& q) const { return Point2(c * q.x() - s * q.y(), s * q.x() + c * q.y()); }
+};
+
+struct Edge {
+  Point2 a, b;               // region frame, mm
+  Point2 sa, sb;             // scan frame
+  std::size_t first, count;  // the ring's edges: first .. first + count - 1
+};
+
+struct Crossing {  // of a scan line with a ring edge
+  double u = 0, t = 0;  // along the line, along the edge
+  std::size_t edge = 0;
+};
+
+struct End {  // of an interval: a crossing moved just inside the region
+  Point2 at, scan;  // region frame, scan frame
+  std::size_t edge = 0;
+};
+
+struct Interval {  // a stretch of a scan line inside the piece, `low` at the lower u
+  End low, high;
+  bool used = false;
+};
+
+// The zig-zag of one connected piece (an outer ring and its holes): scan lines centred over the piece's extent across
+// the direction, cut into intervals by even-odd over the ring crossings, chained into boustrophedon passes.
+class PieceScan {
+ public:
+  PieceScan(const Region& rings, const ScanFrame& frame, const ClearingOptions& options)
+      : frame_(frame),
+        stepover_(std::max(options.stepover, 0.01)),
+        min_length_(std::max(options.min_segment, 4 * kInset)) {
+    for (const ClipperLib::Path& path : rings) {
+      const std::size_t first = edges_.size();
+      for (std::size_t i = 0; i < path.size(); ++i) {
+        const Point2 a = fromRegionPoint(path[i]), b = fromRegionPoint(path[(i + 1) % path.size()]);
+        if (a != b) edges_.push_back({a, b, frame.toScan(a), frame.toScan(b), first, 0});
+      }
+      for (std::size_t e = first; e < edges_.size(); ++e) edges_[e].count = edges_.size() - first;
+    }
+    for (const Edge& edge : edges_) {
+      v_min_ = std::min({v_min_, edge.sa.y(), edge.sb.y()});
+      v_max_ = std::max({v_max_, edge.sa.y(), edge.sb.y()});
+    }
+    if (edges_.empty()) return;
+    cutLines(gridHeights());
+    if (std::all_of(lines_.begin(), lines_.end(), [](const auto& line) { return line.empty(); }))
+      cutLines(widestHeight());  // a narrow piece that the grid missed: one line
+  }
+
+  std::vector<Polyline> passes() {
+    std::vector<Polyline> out;
+    for (std::size_t k = 0; k < lines_.size(); ++k)
+      for (Interval& first : lines_[k])
+        if (!first.used) out.push_back(passFrom(k, first));
+    return out;
+  }
+
+ private:
+  // Lines `stepover` apart, centred over [v_min, v_max]: no point of the piece is farther than stepover/2 in v.
+  std::vector<double> gridHeights() const {
+    const double span = v_max_ - v_min_;
+    const int n = std::max(1, static_cast<int>(std::ceil(span / stepover_ - 1e-9)));
+    const double first = v_min_ + 0.5 * (span - (n - 1) * stepover_);
+    std::vector<double> heights(n);
+    for (int k = 0; k < n; ++k) heights[k] = first + k * stepover_;
+    return heights;
+  }
+
+  // The one height, of a few across the extent, whose longest interval is longest (none if all are too short).
+  std::vector<double> widestHeight() {
+    constexpr int kSamples = 9;
+    double best_v = 0, best_length = 0;
+    for (int i = 0; i < kSamples; ++i) {
+      const double v = v_min_ + (i + 0.5) / kSamples * (v_max_ - v_min_);
+      cutLines({v});
+      for (const Interval& interval : lines_[0]) {
+        const double length = (interval.high.scan - interval.low.scan).norm();
+        if (length > best_length) best_v = v, best_length = length;
+      }
+    }
+    return best_length > 0 ? std::vector<double>{best_v} : std::vector<double>{};
+  }
+
+  // Intervals on the lines at `heights` (ascending), and per strip between consecutive lines the edges that reach
+  // into it. A crossing counts where v_a <= v < v_b (half-open), so a vertex on a line is counted once or twice, never
+  // in a way that breaks the even-odd pairing.
+  void cutLines(const std::vector<double>& heights) {
+    heights_ = heights;
+    std::vector<std::vector<Crossing>> crossings(heights.size());
+    strips_.assign(heights.size() > 1 ? heights.size() - 1 : 0, {});
+    for (std::size_t e = 0; e < edges_.size(); ++e) {
+      const Edge& edge = edges_[e];
+      const double lo = std::min(edge.sa.y(), edge.sb.y()), hi = std::max(edge.sa.y(), edge.sb.y());
+      const std::size_t first = std::lower_bound(heights.begin(), heights.end(), lo) - heights.begin();
+      for (std::size_t k = first; k < heights.size() && heights[k] < hi; ++k) {
+        const double t = (heights[k] - edge.sa.y()) / (edge.sb.y() - edge.sa.y());
+        crossings[k].push_back({edge.sa.x() + t * (edge.sb.x() - edge.sa.x()), t, e});
+      }
+      for (std::size_t j = first > 0 ? first - 1 : 0; j < strips_.size() && heights[j] <= hi; ++j)
+        strips_[j].push_back(e);
+    }
+    lines_.assign(heights.size(), {});
+    for (std::size_t k = 0; k < heights.size(); ++k) {
+      std::vector<Crossing>& line = crossings[k];
+      std::sort(line.begin(), line.end(), [](const Crossing& p, const Crossing& q) { return p.u < q.u; });
+      for (std::size_t i = 0; i + 1 < line.size(); i += 2)
+        if (line[i + 1].u - line[i].u >= min_length_) {
+          Interval interval;
+          if (end(line[i], heights[k], 1, interval.low) && end(line[i + 1], heights[k], -1, interval.high))
+            lines_[k].push_back(interval);
+        }
+    }
+  }
+
+  // The crossing moved just inside its edge onto the region's grid; next to a sharp corner, where that may leave the
+  // region, moved along the line into the interval (`inward`: +1 or -1 in u) instead. False if nothing is inside.
+  bool end(const Crossing& crossing, double v, int inward, End& out) const {
+    const Edge& edge = edges_[crossing.edge];
+    out.edge = crossing.edge;
+    out.at = insetOnEdge(edge.a, edge.b, crossing.t);
+    for (double along : {4 * kInset, 1e-3, 1e-2}) {
+      if (nearEdgeInside(crossing.edge, out.at)) break;
+      out.at = fromRegionPoint(toRegionPoint(frame_.fromScan({crossing.u + inward * along, v})));
+    }
+    out.scan = frame_.toScan(out.at);
+    return nearEdgeInside(crossing.edge, out.at);
+  }
+
+  // `p`, a hair from edge e, is inside the region by e and its neighbours (the wedges at its two corners).
+  bool nearEdgeInside(std::size_t e, const Point2& p) const {
+    auto left = [&](const Edge& edge) { return cross(edge.b - edge.a, p - edge.a) >= 0; };
+    auto wedge = [&](const Edge& in, const Edge& out) {
+      return cross(in.b - in.a, out.b - out.a) >= 0 ? left(in) && left(out) : left(in) || left(out);
+    };
+    return wedge(edges_[step(e, false)], edges_[e]) && wedge(edges_[e], edges_[step(e, true)]);
+  }
+
+  // The next edge of e's ring, or the one before.
+  std::size_t step(std::size_t e, bool ahead) const {
+    const Edge& edge = edges_[e];
+    return edge.first + (e - edge.first + (ahead ? 1 : edge.count - 1)) % edge.count;
+  }
+
+  // A boustrophedon pass from `first` (cut along +u): on each following line, the unused interval entered at the end
+  // that alternates the direction, nearest to where the tool is, joined by a link inside the piece.
+  Polyline passFrom(std::size_t k, Interval& first) {
+    first.used = true;
+    Polyline pass{first.low.at, first.high.at};
+    const End* at = &first.high;
+    bool forward = false;  // the direction of the cut on the next line
+    for (++k; k < lines_.size(); ++k) {
+      Polyline via;
+      Interval* next = reachable(k, *at, forward, via);
+      if (!next) break;
+      next->used = true;
+      const End& entry = forward ? next->low : next->high;
+      pass.insert(pass.end(), via.begin(), via.end());
+      pass.push_back(entry.at);
+      at = forward ? &next->high : &next->low;
+      pass.push_back(at->at);
+      forward = !forward;
+    }
+    return pass;
+  }
+
+  // The unused interval on line k nearest to `from` by its entry end, with the points of the link between (none for
+  // a straight link).
+  Interval* reachable(std::size_t k, const End& from, bool forward, Polyline& via) {
+    std::vector<std::pair<double, Interval*>> candidates;
+    for (Interval& interval : lines_[k])
+      if (!interval.used)
+        candidates.push_back({((forward ? interval.low : interval.high).scan - from.scan).squaredNorm(), &interval});
+    std::stable_sort(candidates.begin(), candidates.end(),
+                     [](const auto& p, const auto& q) { return p.first < q.first; });
+    for (const auto& candidate : candidates) {
+      const End& entry = forward ? candidate.second->low : candidate.second->high;
+      if (linkClear(k - 1, from.scan, entry.scan) || ringLink(k - 1, from.edge, entry.edge, via))
+        return candidate.second;
+    }
+    return nullptr;
+  }
+
+  // Both ends lie strictly inside the piece; a straight link stays inside if it meets none of the edges of its strip.
+  bool linkClear(std::size_t strip, const Point2& a, const Point2& b) const {
+    for (std::size_t e : strips_[strip])
+      if (segmentsMeet(a, b, edges_[e].sa, edges_[e].sb)) return false;
+    return true;
+  }
+
+  // A link along the ring from edge `from` to edge `to` that stays in the strip (round a convex island, where the
+  // straight way cuts through it): the ring's vertices between, either way round.
+  bool ringLink(std::size_t strip, std::size_t from, std::size_t to, Polyline& via) const {
+    if (edges_[from].first != edges_[to].first) return false;
+    const double lo = heights_[strip] - 1e-9, hi = heights_[strip + 1] + 1e-9;
+    for (const bool ahead : {true, false}) {
+      via.clear();
+      for (std::size_t e = from; e != to;) {
+        const Edge& edge = edges_[e];
+        const Point2& vertex = ahead ? edge.sb : edge.sa;
+        if (vertex.y() < lo || vertex.y() > hi) break;
+        via.push_back(ahead ? edge.b : edge.a);
+        e = step(e, ahead);
+        if (e == to) return true;
+      }
+      if (from == to) return true;
+    }
+    via.clear();
+    return false;
+  }
+
+  ScanFrame frame_;
+  double stepover_, min_length_;
+  std::vector<Edge> edges_;
+  double v_min_ = std::numeric_limits<double>::infinity(), v_max_ = -std::numeric_limits<double>::infinity();
+  std::vector<double> heights_;
+  std::vector<std::vector<Interval>> lines_;      // per height, ascending u
+  std::vector<std::vector<std::size_t>> strips_;  // per pair of consecutive heights: the edges reaching into it
+};
+
+// Moves at one level, with the entries and retracts between cuts.
+class PathWriter {
+ public:
+  PathWriter(const ClearingLevel& level, const ClearingOptions& options, ClearingStats& stats)
+      : level_(level),
+        options_(options),
+        stats_(stats),
+        safe_z_(std::max(level.top + options.safe_height, level.z)),
+        slope_(std::tan(std::clamp(options.ramp_angle_deg, 0.01, 89.0) * kPi / 180)) {}
+
+  bool empty() const { return moves_.empty(); }
+  Point2 at() const { return moves_.back().tip.head<2>(); }
+  bool atLevel() const { return !moves_.empty() && moves_.back().tip.z() == level_.z; }
+
+  void add(const Point2& p, double z, ClearingMove move) {
+    const Eigen::Vector3d tip(p.x(), p.y(), z);
+    if (!moves_.empty() && (moves_.back().tip - tip).norm() < 1e-9) return;
+    if (move == ClearingMove::Rapid && z == options_.clearance_z && !moves_.empty() &&
+        moves_.back().tip.z() < options_.clearance_z)
+      ++stats_.retracts;
+    moves_.push_back({tip, move});
+  }
+  void feed(const Point2& p) { add(p, level_.z, ClearingMove::Feed); }
+
+  void retract() {
+    if (!moves_.empty() && moves_.back().tip.z() < options_.clearance_z)
+      add(at(), options_.clearance_z, ClearingMove::Rapid);
+  }
+
+  // Retract, over to above `start` at the clearance plane, straight down to the safe height above the slab.
+  void moveAbove(const Point2& start) {
+    retract();
+    add(start, options_.clearance_z, ClearingMove::Rapid);
+    add(start, safe_z_, ClearingMove::Rapid);
+  }
+
+  // Down to the level at the start of an open pass: a plunge in air, else a ramp forth and back along the pass's
+  // first stretch (at least kMinRampRun long), else along a short segment around the start, else a plunge (counted).
+  // The tool ends at the start of the pass.
+  void enterPass(const Polyline& pass) {
+    if (enteredStraight(pass.front())) return;
+    Polyline ramp = passPrefix(pass);
+    if (pathLength(ramp) < kMinRampRun) ramp = probe(pass.front());
+    rampOrPlunge(ramp, pass.front());
+  }
+
+  // Down to the level at ring[0]: by a ramp round the ring, or as for a pass. Returns where the lap at the level
+  // starts and ends: a point on the edge from vertex `first` (ring[0] on the edge into it, without a ramp).
+  std::pair<std::size_t, Point2> enterRing(const Polyline& ring) {
+    const std::pair<std::size_t, Point2> at_start{ring.size() - 1, ring.front()};
+    if (enteredStraight(ring.front())) return at_start;
+    if (ringPerimeter(ring) < kMinRampRun) {
+      rampOrPlunge(probe(ring.front()), ring.front());
+      return at_start;
+    }
+    ++stats_.ramps;
+    return rampAround(ring);
+  }
+
+  std::vector<ClearingPoint> take() { return std::move(moves_); }
+
+ private:
+  // At the level without a ramp: nothing to descend through, or a plunge in air.
+  bool enteredStraight(const Point2& start) {
+    if (safe_z_ <= level_.z) return true;
+    if (!regionContains(level_.air, start)) return false;
+    add(start, level_.z, ClearingMove::Plunge);
+    ++stats_.plunges_in_air;
+    return true;
+  }
+
+  void rampOrPlunge(const Polyline& ramp, const Point2& start) {
+    if (ramp.size() < 2) {
+      add(start, level_.z, ClearingMove::Plunge);
+      ++stats_.plunges_into_stock;
+      return;
+    }
+    ++stats_.ramps;
+    rampForthAndBack(ramp);
+  }
+
+  // The shortest beginning of the pass that is at least kMinRampRun long (or the whole pass).
+  static Polyline passPrefix(const Polyline& pass) {
+    Polyline prefix{pass.front()};
+    for (std::size_t i = 1; i < pass.size() && pathLength(prefix) < kMinRampRun; ++i) prefix.push_back(pass[i]);
+    return prefix;
+  }
+
+  // The longest straight segment from `start` in `centre` among a few directions and lengths (none: empty).
+  Polyline probe(const Point2& start) const {
+    for (double length : {2.0, 1.0, kMinRampRun})
+      for (int i = 0; i < kProbeDirections; ++i) {
+        const double angle = 2 * kPi * i / kProbeDirections;
+        const Point2 end = start + length * Point2(std::cos(angle), std::sin(angle));
+        if (segmentInside(level_.centre, start, end)) return {start, end};
+      }
+    return {};
+  }
+
+  // From the safe height down to the level at slope_, walking the path forth and back; the last ramp move stops
+  // where the level is reached, then the tool feeds back along the path to its start.
+  void rampForthAndBack(const Polyline& path) {
+    double z = safe_z_;
+    std::size_t i = 0;
+    int step = 1;
+    while (true) {
+      if ((step > 0 && i + 1 == path.size()) || (step < 0 && i == 0)) step = -step;
+      const std::size_t j = i + step;
+      const double run = (path[j] - path[i]).norm(), drop = run * slope_;
+      if (z - drop <= level_.z) {
+        const Point2 stop = path[i] + (z - level_.z) / drop * (path[j] - path[i]);
+        // On a stretch along the boundary the stop may round outside: then on to the next vertex, less steeply.
+        add(regionContains(level_.centre, stop) ? stop : path[j], level_.z, ClearingMove::Ramp);
+        for (std::size_t back = std::min(i, j) + 1; back-- > 0;) feed(path[back]);
+        return;
+      }
+      z -= drop;
+      add(path[j], z, ClearingMove::Ramp);
+      i = j;
+    }
+  }
+
+  // From the safe height down to the level at (at most) slope_, round and round the closed ring from ring[0]; stops
+  // on the edge where the level is reached, at a point moved just inside the region.
+  std::pair<std::size_t, Point2> rampAround(const Polyline& ring) {
+    double z = safe_z_;
+    for (std::size_t i = 0;; i = (i + 1) % ring.size()) {
+      const Point2 &a = ring[i], &b = ring[(i + 1) % ring.size()];
+      const double run = (b - a).norm(), drop = run * slope_;
+      if (run == 0) continue;
+      if (z - drop <= level_.z) {
+        const double t = std::min(1.0, ((z - level_.z) / slope_ + 2 * kInset) / run);  // a hair past: never steeper
+        Point2 stop = insetOnEdge(a, b, t);
+        if (!regionContains(level_.centre, stop)) stop = b;  // next to a sharp corner
+        add(stop, level_.z, ClearingMove::Ramp);
+        return {i, stop};
+      }
+      z -= drop;
+      add(b, z, ClearingMove::Ramp);
+    }
+  }
+
+  const ClearingLevel& level_;
+  const ClearingOptions& options_;
+  ClearingStats& stats_;
+  double safe_z_, slope_;
+  std::vector<ClearingPoint> moves_;
+};
+
+// The piece, among those with passes left, whose first pass starts nearest the tool (the first, for the first).
+std::size_t nextPiece(const std::vector<std::vector<Polyline>>& passes, const std::vector<bool>& done,
+                      const PathWriter& writer) {
+  std::size_t best = passes.size();
+  double best_distance = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < passes.size(); ++i) {
+    if (done[i] || passes[i].empty()) continue;
+    const double d = writer.empty() ? 0 : (passes[i].front().front() - writer.at()).squaredNorm();
+    if (d < best_distance) best = i, best_distance = d;
+  }
+  return best;
+}
+
+void cutZigzag(const std::vector<RegionPiece>& pieces, const ClearingLevel& level, const ClearingOptions& options,
+               PathWriter& writer, ClearingStats& stats) {
+  const ScanFrame frame(options.angle_deg);
+  std::vector<std::vector<Polyline>> passes;
+  for (const RegionPiece& piece : pieces) passes.push_back(PieceScan(piece.rings, frame, options).passes());
+  std::vector<bool> done(passes.size(), false);
+  for (std::size_t i = nextPiece(passes, done, writer); i < passes.size(); i = nextPiece(passes, done, writer)) {
+    done[i] = true;
+    for (Polyline& pass : passes[i]) {
+      // Entered from whichever end lies in air, if one does: a plunge there costs nothing.
+      if (!regionContains(level.air, pass.front()) && regionContains(level.air, pass.back()))
+        std::reverse(pass.begin(), pass.end());
+      writer.moveAbove(pass.front());
+      writer.enterPass(pass);
+      for (const Point2& p : pass) writer.feed(p);
+      ++stats.passes;
+    }
+  }
+}
+
+// The vertex of `ring` nearest to `from`, and its squared distance.
+std::pair<std::size_t, double> nearestVertex(const Polyline& ring, const Point2& from) {
+  std::pair<std::size_t, double> best{0, std::numeric_limits<double>::infinity()};
+  for (std::size_t i = 0; i < ring.size(); ++i)
+    if ((ring[i] - from).squaredNorm() < best.second) best = {i, (ring[i] - from).squaredNorm()};
+  return best;
+}
+
+// Every ring followed once at the level, nearest first; joined by a feed where the straight way is inside the region.
+void cutContours(const std::vector<RegionPiece>& pieces, const ClearingLevel& level, const ClearingOptions& options,
+                 PathWriter& writer, ClearingStats& stats) {
+  std::vector<Polyline> rings;
+  for (const RegionPiece& piece : pieces)
+    for (const Ring& ring : regionRings(piece.rings))
+      if (ring.size() >= 3 && ringPerimeter(ring) >= options.min_segment) rings.push_back(ring);
+  while (!rings.empty()) {
+    std::size_t next = 0, start = 0;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < rings.size() && !writer.empty(); ++i) {
+      const std::pair<std::size_t, double> vertex = nearestVertex(rings[i], writer.at());
+      if (vertex.second < nearest) next = i, start = vertex.first, nearest = vertex.second;
+    }
+    Polyline ring = std::move(rings[next]);
+    rings.erase(rings.begin() + next);
+    std::rotate(ring.begin(), ring.begin() + start, ring.end());
+    std::pair<std::size_t, Point2> lap{ring.size() - 1, ring.front()};
+    if (writer.atLevel() && segmentInside(level.centre, writer.at(), ring.front())) {
+      writer.feed(ring.front());
+    } else {
+      writer.moveAbove(ring.front());
+      lap = writer.enterRing(ring);
+    }
+    // Once round at the level, from where the tool reached it back to there.
+    for (std::size_t k = 1; k <= ring.size(); ++k) writer.feed(ring[(lap.first + k) % ring.size()]);
+    writer.feed(lap.second);
+    ++stats.contours;
+  }
+}
+
+}  // namespace
+
+std::vector<ClearingPoint> clearLevel(const ClearingLevel& level, const ClearingOptions& options,
+                                      ClearingStats* stats) {
+  ClearingStats local;
+  ClearingStats& counts = stats ? *stats : local;
+  if (regionEmpty(level.centre)) return {};
+  const std::vector<RegionPiece> pieces = regionPieces(level.centre);
+  PathWriter writer(level, options, counts);
+  cutZigzag(pieces, level, options, writer, counts);
+  if (options.contour_pass) cutContours(pieces, level, options, writer, counts);
+  writer.retract();
+  return writer.take();
+}
+
+double clearingLength(const std::vector<ClearingPoint>& moves, bool cutting) {
+  double length = 0;
+  for (std::size_t i = 1; i < moves.size(); ++i)
+    if ((moves[i].move != ClearingMove::Rapid) == cutting) length += (moves[i].tip - moves[i - 1].tip).norm();
+  return length;
+}
+
+}  // namespace art2part

@@ -1,0 +1,185 @@
+#include "art2part/roughing/region.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace art2part {
+
+using ClipperLib::cInt;
+using ClipperLib::IntPoint;
+using ClipperLib::Path;
+using ClipperLib::Paths;
+
+IntPoint toRegionPoint(const Point2& p) {
+  return IntPoint(static_cast<cInt>(std::llround(p.x() * kRegionScale)),
+                  static_cast<cInt>(std::llround(p.y() * kRegionScale)));
+}
+
+Point2 fromRegionPoint(const IntPoint& p) {
+  return Point2(static_cast<double>(p.X) / kRegionScale, static_cast<double>(p.Y) / kRegionScale);
+}
+
+namespace {
+
+Region clip(const Region& a, const Region& b, ClipperLib::ClipType type) {
+  ClipperLib::Clipper clipper;
+  clipper.AddPaths(a, ClipperLib::ptSubject, true);
+  clipper.AddPaths(b, ClipperLib::ptClip, true);
+  Region out;
+  clipper.Execute(type, out, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  return out;
+}
+
+double cross(const Point2& a, const Point2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// Where segment a-b meets segment p-q, as parameters along a-b: the crossing or touching point, or the ends of the
+// stretch where they run along each other (then `along` is set). None if apart.
+std::vector<double> meetings(const Point2& a, const Point2& b, const Point2& p, const Point2& q, bool& along) {
+  const Point2 r = b - a, s = q - p;
+  const double d = cross(r, s), rr = r.squaredNorm();
+  along = false;
+  if (std::abs(d) <= 1e-12 * std::sqrt(rr * s.squaredNorm())) {  // parallel: apart, or along one line
+    if (std::abs(cross(r, p - a)) > 1e-9 * std::sqrt(rr)) return {};
+    const double tp = (p - a).dot(r) / rr, tq = (q - a).dot(r) / rr;
+    const double lo = std::max(0.0, std::min(tp, tq)), hi = std::min(1.0, std::max(tp, tq));
+    if (lo > hi) return {};
+    along = true;
+    return {lo, hi};
+  }
+  const double t = cross(p - a, s) / d, u = cross(p - a, r) / d, eps = 1e-9;
+  if (u < -eps || u > 1 + eps || t < -eps || t > 1 + eps) return {};
+  return {std::clamp(t, 0.0, 1.0)};
+}
+
+}  // namespace
+
+Region regionFromPolygons(const std::vector<Ring>& polygons) {
+  Paths paths;
+  paths.reserve(polygons.size());
+  for (const Ring& ring : polygons) {
+    if (ring.size() < 3) continue;
+    Path path;
+    path.reserve(ring.size());
+    for (const Point2& p : ring) path.push_back(toRegionPoint(p));
+    if (ClipperLib::Area(path) == 0) continue;
+    if (!ClipperLib::Orientation(path)) ClipperLib::ReversePath(path);
+    paths.push_back(std::move(path));
+  }
+  ClipperLib::Clipper clipper;
+  clipper.AddPaths(paths, ClipperLib::ptSubject, true);
+  Region out;
+  clipper.Execute(ClipperLib::ctUnion, out, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  return out;
+}
+
+std::vector<Ring> regionRings(const Region& region) {
+  std::vector<Ring> rings;
+  rings.reserve(region.size());
+  for (const Path& path : region) {
+    Ring ring;
+    ring.reserve(path.size());
+    for (const IntPoint& p : path) ring.push_back(fromRegionPoint(p));
+    rings.push_back(std::move(ring));
+  }
+  return rings;
+}
+
+Region unite(const Region& a, const Region& b) { return clip(a, b, ClipperLib::ctUnion); }
+Region subtract(const Region& a, const Region& b) { return clip(a, b, ClipperLib::ctDifference); }
+Region intersect(const Region& a, const Region& b) { return clip(a, b, ClipperLib::ctIntersection); }
+
+Region offsetRegion(const Region& region, double mm) {
+  if (region.empty()) return {};
+  ClipperLib::ClipperOffset offset(2.0, 0.001 * kRegionScale);
+  offset.AddPaths(region, ClipperLib::jtRound, ClipperLib::etClosedPolygon);
+  Region out;
+  offset.Execute(out, mm * kRegionScale);
+  return out;
+}
+
+Region dropSlivers(const Region& region, double min_area_mm2) {
+  Region out;
+  for (const RegionPiece& piece : regionPieces(region))
+    if (piece.area_mm2 >= min_area_mm2) out.insert(out.end(), piece.rings.begin(), piece.rings.end());
+  return out;
+}
+
+double regionArea(const Region& region) {
+  double area = 0;
+  for (const Path& path : region) area += ClipperLib::Area(path);
+  return area / (kRegionScale * kRegionScale);
+}
+
+bool regionEmpty(const Region& region) { return region.empty() || regionArea(region) <= 0; }
+
+bool regionContains(const Region& region, const Point2& p) {
+  const IntPoint q = toRegionPoint(p);
+  int winding = 0;
+  for (const Path& path : region) {
+    const int in = ClipperLib::PointInPolygon(q, path);
+    if (in == -1) return true;  // on a ring
+    if (in == 1) winding += ClipperLib::Orientation(path) ? 1 : -1;
+  }
+  return winding > 0;
+}
+
+bool segmentInside(const Region& region, const Point2& a, const Point2& b) {
+  if (!regionContains(region, a) || !regionContains(region, b)) return false;
+  if (a == b) return true;
+  // Cut a-b wherever it meets a ring (crossing it, touching a vertex, running along an edge): each piece between cuts
+  // lies wholly inside or wholly outside, so its middle decides, unless the piece runs along an edge (the boundary).
+  std::vector<double> cuts{0, 1};
+  std::vector<std::pair<double, double>> on_boundary;
+  const Point2 lo = a.cwiseMin(b), hi = a.cwiseMax(b);
+  for (const Path& path : region) {
+    const std::size_t n = path.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Point2 p = fromRegionPoint(path[i]), q = fromRegionPoint(path[(i + 1) % n]);
+      if (std::max(p.x(), q.x()) < lo.x() || std::min(p.x(), q.x()) > hi.x() || std::max(p.y(), q.y()) < lo.y() ||
+          std::min(p.y(), q.y()) > hi.y())
+        continue;
+      bool along = false;
+      const std::vector<double> ts = meetings(a, b, p, q, along);
+      cuts.insert(cuts.end(), ts.begin(), ts.end());
+      if (along) on_boundary.emplace_back(ts[0], ts[1]);
+    }
+  }
+  std::sort(cuts.begin(), cuts.end());
+  for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+    if (cuts[i + 1] - cuts[i] < 1e-12) continue;
+    const double t = 0.5 * (cuts[i] + cuts[i + 1]);
+    if (std::any_of(on_boundary.begin(), on_boundary.end(),
+                    [t](const std::pair<double, double>& s) { return s.first <= t && t <= s.second; }))
+      continue;
+    if (!regionContains(region, a + t * (b - a))) return false;
+  }
+  return true;
+}
+
+std::vector<RegionPiece> regionPieces(const Region& region) {
+  ClipperLib::Clipper clipper;
+  clipper.AddPaths(region, ClipperLib::ptSubject, true);
+  ClipperLib::PolyTree tree;
+  clipper.Execute(ClipperLib::ctUnion, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  std::vector<RegionPiece> pieces;
+  // Outer rings are the nodes at even depth; their children are holes, whose children are outer rings again.
+  std::vector<const ClipperLib::PolyNode*> stack(tree.Childs.begin(), tree.Childs.end());
+  while (!stack.empty()) {
+    const ClipperLib::PolyNode* outer = stack.back();
+    stack.pop_back();
+    RegionPiece piece;
+    piece.rings.push_back(outer->Contour);
+    double area = ClipperLib::Area(outer->Contour);
+    for (const ClipperLib::PolyNode* hole : outer->Childs) {
+      piece.rings.push_back(hole->Contour);
+      area += ClipperLib::Area(hole->Contour);
+      for (const ClipperLib::PolyNode* inner : hole->Childs) stack.push_back(inner);
+    }
+    piece.area_mm2 = area / (kRegionScale * kRegionScale);
+    pieces.push_back(std::move(piece));
+  }
+  return pieces;
+}
+
+}  // namespace art2part

@@ -1,0 +1,142 @@
+// Tool choice for roughing (thesis future work: tool selection) and the stage over every setup.
+#include <algorithm>
+#include <chrono>
+
+#include "art2part/roughing/roughing.h"
+#include "art2part/roughing/shadow.h"
+
+namespace art2part {
+
+std::vector<const Tool*> roughingTools(const ToolLibrary& library) {
+  std::vector<const Tool*> tools;
+  for (const Tool& t : library.tools)
+    if (t.type == ToolType::Flat || t.type == ToolType::Bull) tools.push_back(&t);
+  std::stable_sort(tools.begin(), tools.end(), [](const Tool* a, const Tool* b) {
+    if (a->diameter != b->diameter) return a->diameter > b->diameter;
+    return a->type == ToolType::Flat && b->type != ToolType::Flat;  // a flat mill clears closer to a floor
+  });
+  return tools;
+}
+
+namespace {
+
+// Area a tool would sweep over a few levels of a setup, counting only the part (not stock left above) against its
+// shank and holder: a quick measure to compare tools.
+double sweptArea(const Tool& tool, const std::vector<double>& zs, const ShadowStack& shadows,
+                 const std::vector<Region>& stocks, const RoughingOptions& options) {
+  const double r = tool.diameter / 2;
+  std::vector<std::pair<double, double>> zones;  // from height, radius
+  if (tool.shank_diameter / 2 > r) zones.push_back({tool.flute_length, tool.shank_diameter / 2});
+  double from = tool.stickout;
+  for (const HolderStep& step : tool.holder) {
+    zones.push_back({from, step.diameter / 2});
+    from += step.length;
+  }
+  double area = 0;
+  Region forbidden;
+  for (std::size_t i = 0; i < zs.size(); ++i) {
+    Region forbid = offsetRegion(shadows.at(zs[i]), r + options.allowance);
+    for (const auto& [height, radius] : zones)
+      forbid = unite(forbid, offsetRegion(shadows.at(zs[i] + height), radius + options.holder_margin));
+    forbidden = unite(forbidden, forbid);
+    const Region centre = subtract(offsetRegion(stocks[i], r + 1.0), forbidden);
+    area += regionArea(intersect(stocks[i], offsetRegion(centre, r)));
+  }
+  return area;
+}
+
+}  // namespace
+
+const Tool* chooseRoughingTool(const Part& part, const Setup& setup, const std::vector<const Tool*>& candidates,
+                               const RoughingOptions& options) {
+  if (candidates.empty()) return nullptr;
+  const std::vector<Vec3> vertices = toFrame(part.mesh.vertices, setup.frame);
+  Mesh stock = roughingStock(part, options);
+  stock.vertices = toFrame(stock.vertices, setup.frame);
+  double top = -1e300, bottom = 1e300;
+  for (const Vec3& p : stock.vertices) {
+    top = std::max(top, p.z());
+    bottom = std::min(bottom, p.z());
+  }
+  // Eight levels evenly down the stock; shadows there and every 2 mm above them (for the shanks and holders).
+  const int n = 8;
+  std::vector<double> zs, heights;
+  std::vector<Region> stocks;
+  double above = top;
+  for (int i = 1; i <= n; ++i) {
+    const double z = top - (top - bottom) * i / (n + 0.5);
+    zs.push_back(z);
+    stocks.push_back(stockSlabRegion(stock.vertices, stock.triangles, z, above));
+    above = z;
+  }
+  for (double h = zs.back(); h <= top; h += 2) heights.push_back(h);
+  heights.insert(heights.end(), zs.begin(), zs.end());
+  const ShadowStack shadows(vertices, part.mesh.triangles, heights);
+  // The reference is what the smallest tool sweeps (a smaller tool reaches at least as far, up to its shorter
+  // reach); then the largest that sweeps the fraction of it. Two or three evaluations on most parts.
+  const double best = sweptArea(*candidates.back(), zs, shadows, stocks, options);
+  if (best <= 0) return nullptr;
+  for (const Tool* tool : candidates)
+    if (sweptArea(*tool, zs, shadows, stocks, options) >= options.tool_area_fraction * best) return tool;
+  return candidates.back();
+}
+
+namespace {
+
+// The rest tool: the largest flat mill at most half the previous tool's diameter, at least 3 mm (smaller ones step down
+// a fifth of their diameter: finishing work, not roughing).
+const Tool* restTool(const std::vector<const Tool*>& candidates, const Tool& main) {
+  for (const Tool* t : candidates)
+    if (t->diameter <= 0.5 * main.diameter + 1e-9 && t->diameter >= 3 - 1e-9 && t->type == ToolType::Flat) return t;
+  return nullptr;
+}
+
+bool cuts(const RoughingOperation& op) {
+  return std::any_of(op.path.begin(), op.path.end(), [](const CutterLocation& c) { return c.move == MoveKind::Feed; });
+}
+
+}  // namespace
+
+RoughingPlan planRoughing(const Part& part, const SetupPlan& setups, const ToolLibrary& library,
+                          const RoughingOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  RoughingPlan plan;
+  const std::vector<const Tool*> candidates = roughingTools(library);
+  const Tool* forced = nullptr;
+  if (!options.tool.empty()) {
+    forced = library.find(options.tool);
+    if (!forced) throw InputError("roughing: no tool '" + options.tool + "' in the tool library");
+    if (forced->type != ToolType::Flat && forced->type != ToolType::Bull)
+      throw InputError("roughing: tool '" + options.tool + "' is a " + toolTypeName(forced->type) +
+                       ", roughing needs a flat or bull end mill");
+  }
+  if (!forced && candidates.empty()) throw InputError("roughing: the tool library has no flat or bull end mill");
+  for (int k = 0; k < static_cast<int>(setups.setups.size()); ++k) {
+    const Setup& setup = setups.setups[k];
+    const Tool* tool = forced ? forced : chooseRoughingTool(part, setup, candidates, options);
+    if (!tool) continue;
+    std::vector<SlabState> left;
+    RoughingOperation main = roughSetup(part, setup, k, *tool, options, nullptr, &left);
+    if (cuts(main)) plan.operations.push_back(std::move(main));
+    else continue;
+    // Rest passes, each with a tool at most half the size of the one before, over what that one left.
+    const Tool* previous = tool;
+    for (int pass = 0; options.rest_pass && pass < options.rest_passes; ++pass) {
+      const Tool* rest = restTool(candidates, *previous);
+      if (!rest) break;
+      std::vector<SlabState> still;
+      RoughingOperation op = roughSetup(part, setup, k, *rest, options, &left, &still);
+      if (cuts(op)) plan.operations.push_back(std::move(op));
+      left = std::move(still);
+      previous = rest;
+    }
+  }
+  for (int i = 0; i < static_cast<int>(plan.operations.size()); ++i) {
+    for (CutterLocation& c : plan.operations[i].path) c.op = i;
+    for (const RoughingLevel& l : plan.operations[i].levels) plan.contours += l.rings;
+  }
+  plan.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return plan;
+}
+
+}  // namespace art2part

@@ -1,0 +1,184 @@
+#include "art2part/roughing/shadow.h"
+
+#include <algorithm>
+#include <limits>
+#include <functional>
+#include <numeric>
+#include <stdexcept>
+
+namespace art2part {
+
+std::vector<Vec3> toFrame(const std::vector<Vec3>& points, const SetupFrame& frame) {
+  std::vector<Vec3> out;
+  out.reserve(points.size());
+  for (const Vec3& p : points) {
+    const Vec3 d = p - frame.origin;
+    out.emplace_back(d.dot(frame.x), d.dot(frame.y), d.dot(frame.z));
+  }
+  return out;
+}
+
+Vec3 fromFrame(const Vec3& p, const SetupFrame& frame) {
+  return frame.origin + p.x() * frame.x + p.y() * frame.y + p.z() * frame.z;
+}
+
+namespace {
+
+// The point of edge a-b at height z, computed from the lower-indexed end so that two triangles sharing the edge get
+// the same point.
+Point2 edgeAt(const std::vector<Vec3>& v, int a, int b, double z) {
+  if (a > b) std::swap(a, b);
+  const Vec3& p = v[a];
+  const Vec3& q = v[b];
+  const double t = (z - p.z()) / (q.z() - p.z());
+  return Point2(p.x() + t * (q.x() - p.x()), p.y() + t * (q.y() - p.y()));
+}
+
+// Triangle `tri` clipped to lo <= z <= hi, projected: up to five points (Sutherland-Hodgman on two planes).
+Ring clipToSlab(const std::vector<Vec3>& v, const Triangle& tri, double lo, double hi) {
+  Ring out;
+  for (int i = 0; i < 3; ++i) {
+    const int a = tri[i], b = tri[(i + 1) % 3];
+    const double za = v[a].z(), zb = v[b].z();
+    const bool a_in = za >= lo && za <= hi;
+    if (a_in) out.emplace_back(v[a].x(), v[a].y());
+    // Crossings of the open edge a-b with the two planes, in order along the edge.
+    double ts[2];
+    double zs[2];
+    int n = 0;
+    for (double plane : {lo, hi}) {
+      if ((za < plane && zb > plane) || (za > plane && zb < plane)) {
+        ts[n] = (plane - za) / (zb - za);
+        zs[n] = plane;
+        ++n;
+      }
+    }
+    if (n == 2 && ts[0] > ts[1]) {
+      std::swap(ts[0], ts[1]);
+      std::swap(zs[0], zs[1]);
+    }
+    for (int k = 0; k < n; ++k) out.push_back(edgeAt(v, a, b, zs[k]));
+  }
+  return out;
+}
+
+}  // namespace
+
+ShadowSweep::ShadowSweep(const std::vector<Vec3>& vertices, const std::vector<Triangle>& triangles)
+    : vertices_(vertices), previous_z_(std::numeric_limits<double>::infinity()) {
+  for (const Triangle& t : triangles) {
+    const Vec3 &a = vertices_[t[0]], &b = vertices_[t[1]], &c = vertices_[t[2]];
+    // Every triangle that is not vertical: for a closed mesh the up-facing ones would do, but a triangle wound the
+    // wrong way (or a gap a repair left) must not open a hole in the shadow, and the down-facing ones lie under
+    // material above the level anyway.
+    const double nz = (b - a).cross(c - a).z();  // twice the projected area
+    if (nz != 0) up_.push_back(t);
+  }
+  auto top = [&](const Triangle& t) {
+    return std::max({vertices_[t[0]].z(), vertices_[t[1]].z(), vertices_[t[2]].z()});
+  };
+  std::sort(up_.begin(), up_.end(), [&](const Triangle& p, const Triangle& q) { return top(p) > top(q); });
+  for (const Triangle& t : up_) {
+    top_.push_back(top(t));
+    bottom_.push_back(std::min({vertices_[t[0]].z(), vertices_[t[1]].z(), vertices_[t[2]].z()}));
+  }
+}
+
+const Region& ShadowSweep::shadowAt(double z) {
+  if (z >= previous_z_) return shadow_;
+  while (next_ < up_.size() && top_[next_] >= z) active_.push_back(static_cast<int>(next_++));
+  const double hi = previous_z_;
+  std::vector<Ring> pieces;
+  std::vector<int> still;
+  for (int i : active_) {
+    if (bottom_[i] > hi) continue;  // wholly above the previous level: projected already
+    Ring piece = clipToSlab(vertices_, up_[i], z, hi);
+    if (piece.size() >= 3) pieces.push_back(std::move(piece));
+    if (bottom_[i] < z) still.push_back(i);
+  }
+  active_.swap(still);
+  slab_triangles_ += static_cast<int>(pieces.size());
+  if (!pieces.empty()) shadow_ = unite(shadow_, regionFromPolygons(pieces));
+  previous_z_ = z;
+  return shadow_;
+}
+
+ShadowStack::ShadowStack(const std::vector<Vec3>& vertices, const std::vector<Triangle>& triangles,
+                         std::vector<double> heights) {
+  part_top_ = -std::numeric_limits<double>::infinity();
+  for (const Vec3& p : vertices) part_top_ = std::max(part_top_, p.z());
+  std::sort(heights.begin(), heights.end(), std::greater<double>());
+  heights.erase(std::unique(heights.begin(), heights.end()), heights.end());
+  ShadowSweep sweep(vertices, triangles);
+  for (double z : heights) {
+    heights_.push_back(z);
+    shadows_.push_back(sweep.shadowAt(z));
+  }
+  slab_triangles_ = sweep.slabTriangles();
+}
+
+const Region& ShadowStack::at(double z) const {
+  if (z > part_top_) return empty_;
+  const auto it = std::lower_bound(heights_.begin(), heights_.end(), z, std::greater<double>());  // first <= z
+  if (it == heights_.end()) throw std::out_of_range("ShadowStack: a height below every stored one");
+  return shadows_[it - heights_.begin()];
+}
+
+namespace {
+
+double cross2(const Point2& o, const Point2& a, const Point2& b) {
+  return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+}
+
+// Andrew's monotone chain; counter-clockwise.
+Ring convexHull(std::vector<Point2> points) {
+  std::sort(points.begin(), points.end(),
+            [](const Point2& a, const Point2& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
+  if (points.size() < 3) return points;
+  Ring hull(2 * points.size());
+  std::size_t k = 0;
+  for (const Point2& p : points) {
+    while (k >= 2 && cross2(hull[k - 2], hull[k - 1], p) <= 0) --k;
+    hull[k++] = p;
+  }
+  for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && cross2(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+    hull[k++] = points[i];
+  }
+  hull.resize(k - 1);
+  return hull;
+}
+
+}  // namespace
+
+Region stockSlabRegion(const std::vector<Vec3>& vertices, const std::vector<Triangle>& triangles, double lo,
+                       double hi) {
+  std::vector<Point2> points;
+  for (const Vec3& p : vertices)
+    if (p.z() >= lo && p.z() <= hi) points.emplace_back(p.x(), p.y());
+  for (const Triangle& t : triangles)
+    for (int i = 0; i < 3; ++i) {
+      const Vec3 &a = vertices[t[i]], &b = vertices[t[(i + 1) % 3]];
+      for (double plane : {lo, hi})
+        if ((a.z() < plane && b.z() > plane) || (a.z() > plane && b.z() < plane)) {
+          const double s = (plane - a.z()) / (b.z() - a.z());
+          points.emplace_back(a.x() + s * (b.x() - a.x()), a.y() + s * (b.y() - a.y()));
+        }
+    }
+  const Ring hull = convexHull(points);
+  if (hull.size() < 3) return {};
+  return regionFromPolygons({hull});
+}
+
+Mesh boxMesh(const Box& box) {
+  Mesh mesh;
+  for (int i = 0; i < 8; ++i)
+    mesh.vertices.emplace_back(i & 1 ? box.max.x() : box.min.x(), i & 2 ? box.max.y() : box.min.y(),
+                               i & 4 ? box.max.z() : box.min.z());
+  // Two triangles per face, counter-clockwise seen from outside.
+  mesh.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                    {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  return mesh;
+}
+
+}  // namespace art2part

@@ -1,0 +1,196 @@
+// roughing_planner: global roughing of a part loaded in part_server (thesis 4.1, 5.1-5.2); with the same options the
+// same plan as `art2part plan`'s roughing stage (planRoughing one setup at a time).
+//   action:   plan_roughing (PlanRoughing): visibility and setups here, then one setup at a time: the main flat or bull
+//             mill (chosen per setup, or the goal's), then optionally the rest tool; feedback between stages and
+//             setups (setup k of n, the last operation, levels done); the result holds per operation a
+//             MachiningOperation and the whole toolpath (tips in metres, moves); toolpaths.csv and tools.json are
+//             written to the goal's output_dir when it names one
+//   topics:   ~markers (MarkerArray, latched): DELETEALL, per operation its feed moves coloured by tool (ns feed_<i>)
+//             and its rapids thin and grey (ns rapid_<i>), per setup its levels as squares (ns slabs_<k>), metres
+//   params:   ~frame_id (default "part"), ~tools (the tool library; default the package's config/tools.yaml)
+// A bad goal (unknown part or tool, a tool that cannot rough, a bad mode or number, an unwritable output_dir) is
+// aborted with a one-line reason in result.message; the node stays up. A cancel, or a new goal, stops the running one
+// at the next stage or setup (a setup being roughed is finished first); it ends preempted.
+#include "roughing_markers.h"  // first: the message MachiningOperation beside the core's RoughingOperation
+
+#include <actionlib/server/simple_action_server.h>
+#include <ros/ros.h>
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <stdexcept>
+
+#include "part_client.h"
+
+#ifndef ART2PART_CONFIG_DIR
+#error "ART2PART_CONFIG_DIR (the package's config folder) must be defined by the build"
+#endif
+
+namespace art2part {
+
+namespace {
+
+// Thrown when the client cancels a goal (or a newer goal preempts it) between two steps.
+struct Preempted : std::runtime_error {
+  Preempted() : std::runtime_error("preempted") {}
+};
+
+std::string oneDecimal(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f", value);
+  return text;
+}
+
+}  // namespace
+
+class RoughingPlannerNode {
+ public:
+  RoughingPlannerNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
+      : server_(nh, "plan_roughing", [this](const PlanRoughingGoalConstPtr& goal) { execute(goal); }, false) {
+    pnh.param<std::string>("frame_id", frame_id_, "part");
+    pnh.param<std::string>("tools", tools_path_, std::string(ART2PART_CONFIG_DIR) + "/tools.yaml");
+    markers_pub_ = pnh.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
+    server_.start();
+    ROS_INFO("plan_roughing ready (tools: %s)", tools_path_.c_str());
+  }
+
+ private:
+  void feedback(PlanRoughingFeedback& f) {
+    server_.publishFeedback(f);
+    if (server_.isPreemptRequested() || !ros::ok()) throw Preempted();
+  }
+
+  void execute(const PlanRoughingGoalConstPtr& goal) {
+    PlanRoughingResult result;
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      // Everything the goal says is checked before the part is fetched and analysed.
+      const SetupOptions setup_options = roughingSetupOptionsFrom(*goal);
+      const VisibilityOptions visibility_options = roughingVisibilityOptionsFrom(*goal);
+      const ToolLibrary library = loadToolLibrary(tools_path_);  // each goal: edits to the file count
+      const RoughingOptions options = roughingOptionsFrom(*goal, library, tools_path_);
+
+      PlanRoughingFeedback f;
+      f.stage = "fetching part";
+      feedback(f);
+      std::string id;
+      const std::shared_ptr<const Part> part = parts_.get(goal->part_id, &id);
+
+      f.stage = "visibility";
+      feedback(f);
+      auto progress = [this, &f](double fraction) {
+        f.fraction = fraction;
+        server_.publishFeedback(f);
+        return !server_.isPreemptRequested() && ros::ok();
+      };
+      const VisibilityResult visibility = analyseVisibility(*part, visibility_options, progress);
+
+      f.stage = "setups";
+      f.fraction = 0;
+      feedback(f);
+      const SetupPlan setups = planSetups(*part, visibility, setup_options);
+
+      const RoughingPlan plan = roughEachSetup(*part, setups, library, options, f);
+      if (!goal->output_dir.empty()) writeRoughingFiles(plan, library, goal->output_dir);
+
+      fillResult(plan, result);
+      result.mode = machineModeName(setups.mode);
+      result.setup_count = static_cast<uint32_t>(setups.setups.size());
+      result.success = true;
+      result.message = summary(id, setups, plan, result, goal->output_dir);
+      result.seconds = secondsSince(start);
+      markers_pub_.publish(roughingMarkers(*part, setups, plan, options, frame_id_));
+      ROS_INFO("plan_roughing: %s", result.message.c_str());
+      server_.setSucceeded(result);
+    } catch (const std::exception& e) {  // InputError (a bad goal), a cancelled goal and anything else: no crash
+      const bool stopped = dynamic_cast<const Preempted*>(&e) != nullptr;
+      const bool preempted = stopped || server_.isPreemptRequested();
+      result = PlanRoughingResult();
+      result.success = false;
+      result.message = stopped ? std::string("preempted") : preempted ? "preempted: " + std::string(e.what()) : e.what();
+      result.seconds = secondsSince(start);
+      ROS_WARN("plan_roughing: %s", result.message.c_str());
+      if (preempted) server_.setPreempted(result, result.message);
+      else server_.setAborted(result, result.message);
+    }
+  }
+
+  // planRoughing one setup at a time (the core's tool choice and rest pass, unchanged), with feedback between setups;
+  // operations and setups renumbered as planRoughing over the whole plan numbers them.
+  RoughingPlan roughEachSetup(const Part& part, const SetupPlan& setups, const ToolLibrary& library,
+                              const RoughingOptions& options, PlanRoughingFeedback& f) {
+    const auto start = std::chrono::steady_clock::now();
+    RoughingPlan plan;
+    const int n = static_cast<int>(setups.setups.size());
+    f.stage = "roughing";
+    f.setups = static_cast<uint32_t>(n);
+    for (int k = 0; k < n; ++k) {
+      f.setup = static_cast<uint32_t>(k + 1);
+      f.fraction = static_cast<double>(k) / n;
+      feedback(f);
+      SetupPlan one;
+      one.mode = setups.mode;
+      one.max_tilt_deg = setups.max_tilt_deg;
+      one.setups = {setups.setups[k]};
+      RoughingPlan part_plan = planRoughing(part, one, library, options);
+      plan.contours += part_plan.contours;
+      for (RoughingOperation& op : part_plan.operations) {
+        const int index = static_cast<int>(plan.operations.size());
+        op.setup = k;
+        for (CutterLocation& c : op.path) {
+          c.op = index;
+          c.setup = k;
+        }
+        f.levels_done += static_cast<uint32_t>(op.levels.size());
+        f.operations += 1;
+        f.operation = "setup " + std::to_string(k) + ": " + op.kind + ", " + op.tool + ", " +
+                      std::to_string(op.levels.size()) + " levels, " + std::to_string(op.path.size()) + " points";
+        plan.operations.push_back(std::move(op));
+      }
+    }
+    f.stage = "done";
+    f.fraction = 1;
+    server_.publishFeedback(f);
+    plan.seconds = secondsSince(start);
+    return plan;
+  }
+
+  static std::string summary(const std::string& id, const SetupPlan& setups, const RoughingPlan& plan,
+                             const PlanRoughingResult& result, const std::string& output_dir) {
+    double cutting_m = 0, estimated_s = 0;
+    for (const MachiningOperation& op : result.operations) {
+      cutting_m += op.cutting_length_m;
+      estimated_s += op.estimated_time_s;
+    }
+    std::string text = "part '" + id + "': " + std::to_string(setups.setups.size()) +
+                       (setups.setups.size() == 1 ? " setup (" : " setups (") + machineModeName(setups.mode) + "), " +
+                       std::to_string(plan.operations.size()) +
+                       (plan.operations.size() == 1 ? " operation, " : " operations, ") +
+                       std::to_string(result.tips.size()) + " points, " + oneDecimal(cutting_m) + " m cutting, ~" +
+                       std::to_string(static_cast<long>(estimated_s)) + " s machining";
+    if (!output_dir.empty()) text += "; wrote " + output_dir + "/{toolpaths.csv,tools.json}";
+    return text;
+  }
+
+  static double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+
+  actionlib::SimpleActionServer<PlanRoughingAction> server_;
+  std::string frame_id_, tools_path_;
+  ros::Publisher markers_pub_;
+  PartClient parts_;  // only the action's thread uses it
+};
+
+}  // namespace art2part
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "roughing_planner");
+  ros::NodeHandle nh, pnh("~");
+  art2part::RoughingPlannerNode node(nh, pnh);
+  ros::AsyncSpinner spinner(1);  // goals and cancels arrive while the action's thread plans
+  spinner.start();
+  ros::waitForShutdown();
+  return 0;
+}

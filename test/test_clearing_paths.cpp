@@ -1,0 +1,407 @@
+// Clearing one slab: coverage, containment, entries, links and heights of clearLevel's moves.
+#include "art2part/roughing/clearing_paths.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <set>
+
+using namespace art2part;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+Ring rectangle(double x0, double y0, double x1, double y1) { return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}; }
+
+Ring circle(const Point2& c, double r, int n = 72) {
+  Ring ring;
+  for (int i = 0; i < n; ++i) ring.push_back(c + r * Point2(std::cos(2 * kPi * i / n), std::sin(2 * kPi * i / n)));
+  return ring;
+}
+
+Region region(const std::vector<Ring>& rings) { return regionFromPolygons(rings); }
+
+ClearingLevel levelOf(const Region& centre, const Region& air = {}) {
+  ClearingLevel level;
+  level.z = -3;
+  level.top = 0;
+  level.centre = centre;
+  level.air = air;
+  return level;
+}
+
+ClearingOptions optionsOf(double stepover = 4, double angle_deg = 0, bool contour = true) {
+  ClearingOptions options;
+  options.stepover = stepover;
+  options.angle_deg = angle_deg;
+  options.clearance_z = 10;
+  options.safe_height = 1;
+  options.ramp_angle_deg = 3;
+  options.contour_pass = contour;
+  return options;
+}
+
+Point2 xy(const ClearingPoint& m) { return m.tip.head<2>(); }
+
+struct Segment {
+  Point2 a, b;
+};
+
+// Feed moves from a point at the level to a point at the level.
+std::vector<Segment> feedsAtLevel(const std::vector<ClearingPoint>& moves, double z) {
+  std::vector<Segment> out;
+  for (std::size_t i = 1; i < moves.size(); ++i)
+    if (moves[i].move == ClearingMove::Feed && moves[i - 1].tip.z() == z && moves[i].tip.z() == z)
+      out.push_back({xy(moves[i - 1]), xy(moves[i])});
+  return out;
+}
+
+double distanceToSegment(const Point2& p, const Segment& s) {
+  const Point2 d = s.b - s.a;
+  const double t = d.squaredNorm() > 0 ? std::clamp((p - s.a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+  return (s.a + t * d - p).norm();
+}
+
+// The largest distance from a point of a `grid` mm lattice in the region to the nearest feed at the level.
+double worstCoverage(const Region& centre, const std::vector<ClearingPoint>& moves, double z, double grid = 0.5) {
+  const std::vector<Segment> feeds = feedsAtLevel(moves, z);
+  Point2 lo(1e9, 1e9), hi(-1e9, -1e9);
+  for (const Ring& ring : regionRings(centre))
+    for (const Point2& p : ring) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  double worst = 0;
+  for (double x = std::floor(lo.x()); x <= hi.x(); x += grid)
+    for (double y = std::floor(lo.y()); y <= hi.y(); y += grid) {
+      const Point2 p(x, y);
+      if (!regionContains(centre, p)) continue;
+      double best = 1e9;
+      for (const Segment& s : feeds) best = std::min(best, distanceToSegment(p, s));
+      worst = std::max(worst, best);
+    }
+  return worst;
+}
+
+int upwardRetracts(const std::vector<ClearingPoint>& moves, double clearance_z) {
+  int n = 0;
+  for (std::size_t i = 1; i < moves.size(); ++i)
+    if (moves[i].move == ClearingMove::Rapid && moves[i].tip.z() == clearance_z && moves[i - 1].tip.z() < clearance_z)
+      ++n;
+  return n;
+}
+
+// The properties every result must have: rapids only at the clearance plane or straight down to the safe height;
+// cutting points in `centre` at heights in [z, top + safe]; cutting segments inside `centre` (within 1 um: the
+// region's own segment test rounds midpoints of boundary edges to its grid); nothing steeper than the ramp angle but
+// plunges, which go straight down, in `air` unless counted; no repeated points; stats consistent with the moves.
+void expectSound(const ClearingLevel& level, const ClearingOptions& options, const std::vector<ClearingPoint>& moves,
+                 const ClearingStats& stats) {
+  ASSERT_GE(moves.size(), 3u);
+  const double safe = level.top + options.safe_height, slope = std::tan(options.ramp_angle_deg * kPi / 180);
+  const Region near_centre = offsetRegion(level.centre, 0.001);
+  EXPECT_EQ(moves.front().move, ClearingMove::Rapid);
+  EXPECT_EQ(moves.front().tip.z(), options.clearance_z);
+  EXPECT_EQ(moves.back().move, ClearingMove::Rapid);
+  EXPECT_EQ(moves.back().tip.z(), options.clearance_z);
+  int plunges_into_stock = 0, bad_points = 0, bad_segments = 0, steep = 0;
+  for (std::size_t i = 1; i < moves.size(); ++i) {
+    const ClearingPoint &m = moves[i], &prev = moves[i - 1];
+    ASSERT_GT((m.tip - prev.tip).norm(), 1e-9) << "repeated point at move " << i;
+    const double run = (xy(m) - xy(prev)).norm(), dz = m.tip.z() - prev.tip.z();
+    switch (m.move) {
+      case ClearingMove::Rapid:
+        EXPECT_GE(m.tip.z(), safe - 1e-12) << "rapid below the safe height at move " << i;
+        if (run > 0) {
+          EXPECT_EQ(m.tip.z(), options.clearance_z) << "sideways rapid off the clearance plane at move " << i;
+          EXPECT_EQ(prev.tip.z(), options.clearance_z) << "sideways rapid off the clearance plane at move " << i;
+        }
+        continue;
+      case ClearingMove::Plunge:
+        EXPECT_EQ(run, 0) << "slanted plunge at move " << i;
+        EXPECT_EQ(m.tip.z(), level.z);
+        if (!regionContains(level.air, xy(m))) ++plunges_into_stock;
+        break;
+      case ClearingMove::Feed:
+        EXPECT_EQ(m.tip.z(), level.z) << "feed off the level at move " << i;
+        [[fallthrough]];
+      case ClearingMove::Ramp:
+        if (-dz > slope * run + 1e-9) ++steep;
+        break;
+    }
+    if (!regionContains(level.centre, xy(m)) || m.tip.z() < level.z || m.tip.z() > safe + 1e-12) ++bad_points;
+    if (run > 0 && !segmentInside(near_centre, xy(prev), xy(m))) ++bad_segments;
+  }
+  EXPECT_EQ(bad_points, 0) << "cutting points outside the region or the slab";
+  EXPECT_EQ(bad_segments, 0) << "cutting segments leaving the region";
+  EXPECT_EQ(steep, 0) << "cutting moves steeper than the ramp angle";
+  EXPECT_EQ(plunges_into_stock, stats.plunges_into_stock);
+  EXPECT_EQ(upwardRetracts(moves, options.clearance_z), stats.retracts);
+  // Every descent into the slab ends at the level before any cut: the last cutting point is at the level.
+  EXPECT_EQ(moves[moves.size() - 2].tip.z(), level.z);
+}
+
+std::vector<ClearingPoint> clearChecked(const ClearingLevel& level, const ClearingOptions& options,
+                                        ClearingStats& stats) {
+  std::vector<ClearingPoint> moves = clearLevel(level, options, &stats);
+  expectSound(level, options, moves, stats);
+  return moves;
+}
+
+// v of a point across lines at `angle_deg`.
+double across(const Point2& p, double angle_deg) {
+  const double a = angle_deg * kPi / 180;
+  return -std::sin(a) * p.x() + std::cos(a) * p.y();
+}
+
+}  // namespace
+
+TEST(ClearingPaths, EmptyRegionGivesNoMoves) {
+  ClearingStats stats;
+  EXPECT_TRUE(clearLevel(levelOf({}), optionsOf(), &stats).empty());
+  EXPECT_EQ(stats.passes, 0);
+}
+
+TEST(ClearingPaths, RectangleIsCoveredByCentredLinesInOnePass) {
+  const ClearingLevel level = levelOf(region({rectangle(0, 0, 40, 20)}));
+  ClearingStats stats;
+  const std::vector<ClearingPoint> moves = clearChecked(level, optionsOf(4, 0, false), stats);
+  EXPECT_LE(worstCoverage(level.centre, moves, level.z), 2 + 1e-6);
+  std::set<long> lines;  // heights of the long feeds, in um
+  for (const Segment& s : feedsAtLevel(moves, level.z))
+    if (std::abs(s.b.x() - s.a.x()) > 30) lines.insert(std::lround(s.a.y() * 1000));
+  EXPECT_EQ(lines, (std::set<long>{2000, 6000, 10000, 14000, 18000}));
+  EXPECT_EQ(stats.passes, 1);
+  EXPECT_EQ(stats.retracts, 1);  // only the last
+  EXPECT_EQ(stats.ramps, 1);
+  EXPECT_EQ(stats.plunges_in_air + stats.plunges_into_stock, 0);
+
+  ClearingStats with_contour;
+  const std::vector<ClearingPoint> contoured = clearChecked(level, optionsOf(4, 0, true), with_contour);
+  EXPECT_EQ(with_contour.contours, 1);
+  EXPECT_EQ(with_contour.retracts, 1);  // the contour is joined at the level
+  EXPECT_LE(worstCoverage(level.centre, contoured, level.z), 2 + 1e-6);
+}
+
+TEST(ClearingPaths, RampsAlongTheFirstIntervalAndPlungesOnlyInAir) {
+  const Region centre = region({rectangle(0, 0, 40, 20)});
+  ClearingStats ramped;
+  const std::vector<ClearingPoint> moves = clearChecked(levelOf(centre), optionsOf(), ramped);
+  std::size_t ramp_moves = 0;
+  for (const ClearingPoint& m : moves) {
+    if (m.move != ClearingMove::Ramp) continue;
+    ++ramp_moves;
+    EXPECT_NEAR(m.tip.y(), 2, 1e-3);  // along the first line
+  }
+  EXPECT_GE(ramp_moves, 2u);  // 4 mm down at 3 degrees: 76 mm, more than the 40 mm line
+  EXPECT_EQ(ramped.plunges_in_air + ramped.plunges_into_stock, 0);
+
+  // Air at the far end of the only pass: the pass is turned round and entered there by a plunge.
+  const ClearingLevel level = levelOf(centre, region({rectangle(35, -5, 45, 25)}));
+  ClearingStats stats;
+  const std::vector<ClearingPoint> plunged = clearChecked(level, optionsOf(), stats);
+  EXPECT_EQ(stats.plunges_in_air, 1);
+  EXPECT_EQ(stats.ramps, 0);
+  EXPECT_EQ(stats.plunges_into_stock, 0);
+}
+
+TEST(ClearingPaths, TinyPieceWithNoRoomToRampIsCountedAsPlunge) {
+  const ClearingLevel level = levelOf(region({rectangle(0, 0, 40, 20), rectangle(50, 5, 50.3, 5.3)}));
+  ClearingStats stats;
+  const std::vector<ClearingPoint> moves = clearChecked(level, optionsOf(4, 0, false), stats);
+  EXPECT_EQ(stats.plunges_into_stock, 1);
+  EXPECT_EQ(stats.ramps, 1);
+  EXPECT_EQ(stats.passes, 2);
+}
+
+TEST(ClearingPaths, IslandIsNeverCrossedAndNeedsRetracts) {
+  const Region island = region({rectangle(20, 10, 40, 30)});
+  const ClearingLevel level = levelOf(subtract(region({rectangle(0, 0, 60, 40)}), island));
+  ClearingStats stats;
+  const std::vector<ClearingPoint> moves = clearChecked(level, optionsOf(), stats);
+  EXPECT_LE(worstCoverage(level.centre, moves, level.z), 2 + 1e-6);
+  const Region inner = offsetRegion(island, -0.001);
+  int inside_island = 0;
+  for (std::size_t i = 1; i < moves.size(); ++i) {
+    if (moves[i].move == ClearingMove::Rapid) continue;
+    for (int k = 0; k <= 50; ++k)
+      if (regionContains(inner, xy(moves[i - 1]) + k / 50.0 * (xy(moves[i]) - xy(moves[i - 1])))) ++inside_island;
+  }
+  EXPECT_EQ(inside_island, 0);
+  EXPECT_GE(stats.passes, 2);
+  EXPECT_GE(stats.retracts, 2);  // at least one between passes, and the last
+  EXPECT_EQ(stats.contours, 2);
+}
+
+TEST(ClearingPaths, LinksGoRoundARoundIsland) {
+  // A straight link between two points of a convex island's boundary cuts through it: links follow the ring instead,
+  // so the lines either side of the island need no more than one extra pass.
+  const ClearingLevel level = levelOf(subtract(region({rectangle(0, 0, 60, 40)}), region({circle({25, 20}, 8)})));
+  for (double angle : {0.0, 60.0}) {
+    SCOPED_TRACE(angle);
+    ClearingStats stats;
+    const std::vector<ClearingPoint> moves = clearChecked(level, optionsOf(2, angle), stats);
+    EXPECT_LE(stats.passes, 2);
+    EXPECT_LE(stats.retracts, 3);
+    EXPECT_LE(worstCoverage(level.centre, moves, level.z), 1 + 1e-3);
+  }
+}
+
+TEST(ClearingPaths, SegmentAlongTheBoundaryThatLeavesThroughAVertexIsOutside) {
+  // Two boxes with their bottoms on one line: a segment along both bottoms crosses the gap between them, touching
+  // the region's rings only at vertices and along edges (contour links rely on segmentInside seeing this).
+  const Region boxes = region({rectangle(0, 0, 10, 5), rectangle(15, 0, 25, 5)});
+  EXPECT_FALSE(segmentInside(boxes, {5, 0}, {25, 0}));  // its middle is a vertex of the second box
+  EXPECT_FALSE(segmentInside(boxes, {10, 0}, {15, 0}));
+  EXPECT_TRUE(segmentInside(boxes, {2, 0}, {10, 0}));      // along an edge
+  EXPECT_TRUE(segmentInside(boxes, {10, 0}, {10, 5}));     // a whole edge
+  EXPECT_TRUE(segmentInside(boxes, {0.3, 0}, {9.7, 4.1}));  // from the boundary inwards
+  EXPECT_FALSE(segmentInside(boxes, {5, 2}, {20, 2}));
+}
+
+TEST(ClearingPaths, PieceWhoseMiddleLineIsTooShortGetsALineWhereItIsWide) {
+  // An hourglass whose neck, on the one line centred over it, is narrower than min_segment.
+  const ClearingLevel level = levelOf(region({{{0, 0}, {10, 0}, {5.02, 1}, {10, 2}, {0, 2}, {4.98, 1}}}));
+  ClearingStats stats;
+  const std::vector<ClearingPoint> moves = clearChecked(level, optionsOf(4, 0, false), stats);
+  EXPECT_EQ(stats.passes, 1);
+  double longest = 0;
+  for (const Segment& s : feedsAtLevel(moves, level.z)) longest = std::max(longest, (s.b - s.a).norm());
+  EXPECT_GT(longest, 5);
+}
+
+TEST(ClearingPaths, TwoProngedRegionIsCoveredWithFewRetracts) {
+  // A U: a base 60 x 15 and two prongs 15 wide, 25 long; cut across the prongs and along them.
+  const Region u = region({rectangle(0, 0, 60, 15), rectangle(0, 15, 15, 40), rectangle(45, 15, 60, 40)});
+  for (double angle : {0.0, 90.0, 180.0}) {
+    SCOPED_TRACE(angle);
+    const ClearingLevel level = levelOf(u);
+    ClearingStats stats;
+    const std::vector<ClearingPoint> moves = clearChecked(level, optionsOf(4, angle), stats);
+    EXPECT_LE(worstCoverage(level.centre, moves, level.z), 2 + 1e-3);
+    EXPECT_LE(stats.retracts, 3);
+    EXPECT_LE(stats.passes, 2);
+  }
+}
+
+TEST(ClearingPaths, HeightsStayInTheSlabAndCutsEndAtTheLevel) {
+  ClearingLevel level = levelOf(subtract(region({circle({0, 0}, 25)}), region({circle({5, 3}, 6)})));
+  level.z = -7.5;
+  level.top = -4;
+  ClearingOptions options = optionsOf(3, 17);
+  options.safe_height = 0.5;
+  ClearingStats stats;
+  const std::vector<ClearingPoint> moves = clearChecked(level, options, stats);
+  double lowest = 1e9, highest_cut = -1e9;
+  for (const ClearingPoint& m : moves) {
+    lowest = std::min(lowest, m.tip.z());
+    if (m.move != ClearingMove::Rapid) highest_cut = std::max(highest_cut, m.tip.z());
+  }
+  EXPECT_EQ(lowest, level.z);
+  EXPECT_LE(highest_cut, level.top + options.safe_height);
+  // A ramp's last point is exactly at the level, and feeds follow it there.
+  for (std::size_t i = 0; i + 1 < moves.size(); ++i) {
+    if (moves[i].move == ClearingMove::Ramp && moves[i + 1].move != ClearingMove::Ramp) {
+      EXPECT_EQ(moves[i].tip.z(), level.z);
+    }
+  }
+  EXPECT_GE(stats.ramps, 1);
+}
+
+TEST(ClearingPaths, AngleTurnsTheLines) {
+  const double angle = 30, stepover = 2.5;
+  const ClearingLevel level = levelOf(region({circle({10, -4}, 20, 180)}));
+  ClearingStats stats;
+  const std::vector<ClearingPoint> moves = clearChecked(level, optionsOf(stepover, angle, false), stats);
+  double along = 0, total = 0;
+  int others = 0;
+  std::set<long> heights;
+  for (const Segment& s : feedsAtLevel(moves, level.z)) {
+    const double dv = across(s.b, angle) - across(s.a, angle), length = (s.b - s.a).norm();
+    total += length;
+    if (std::abs(dv) < 1e-3) {
+      along += length;
+      heights.insert(std::lround(across(s.a, angle) / stepover * 100));
+    } else if (std::abs(std::abs(dv) - stepover) > 1e-3) {
+      ++others;  // neither along the lines nor a link between neighbouring lines
+    }
+  }
+  EXPECT_EQ(others, 0);
+  EXPECT_GT(along, 0.8 * total);
+  EXPECT_EQ(heights.size(), 16u);  // 40 mm across at 2.5 mm
+  std::set<long> fractions;        // the lines lie on one grid of pitch `stepover`
+  for (long h : heights) fractions.insert(((h % 100) + 100) % 100);
+  EXPECT_EQ(fractions.size(), 1u);
+  // Lines alone leave crescents at the boundary between their ends; the contour pass takes them.
+  ClearingStats contoured;
+  const std::vector<ClearingPoint> all = clearChecked(level, optionsOf(stepover, angle, true), contoured);
+  EXPECT_LE(worstCoverage(level.centre, all, level.z), stepover / 2 + 1e-3);
+}
+
+TEST(ClearingPaths, NarrowPieceBetweenLinesGetsALine) {
+  // Lines centred over the whole region would miss the strip: each piece has its own.
+  const ClearingLevel level = levelOf(region({rectangle(0, 0, 40, 20), rectangle(0, 22.3, 30, 23.3)}));
+  ClearingStats stats;
+  const std::vector<ClearingPoint> moves = clearChecked(level, optionsOf(4, 0, false), stats);
+  EXPECT_LE(worstCoverage(level.centre, moves, level.z, 0.25), 2 + 1e-6);
+  EXPECT_EQ(stats.passes, 2);
+}
+
+TEST(ClearingPaths, LargeRegionWithIslandsIsQuick) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> x(5, 195), y(5, 145), r(1.5, 6);
+  std::vector<Ring> circles;
+  for (int i = 0; i < 50; ++i) circles.push_back(circle({x(random), y(random)}, r(random), 48));
+  // The tool centre's region for a 6 mm tool: round offsets make dense rings, as in roughing.
+  const Region islands = offsetRegion(region(circles), 3);
+  ClearingLevel level = levelOf(subtract(region({rectangle(0, 0, 200, 150)}), islands));
+  level.air = subtract(level.centre, region({rectangle(10, 10, 190, 140)}));
+  const ClearingOptions options = optionsOf(2, 0, true);
+  std::size_t vertices = 0;
+  for (const auto& path : level.centre) vertices += path.size();
+
+  clearLevel(level, options);  // warm up
+  const int runs = 5;
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<ClearingPoint> moves;
+  for (int i = 0; i < runs; ++i) moves = clearLevel(level, options);
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / runs;
+  ClearingStats stats;
+  moves = clearChecked(level, options, stats);
+  std::printf("[ timing   ] 200x150 mm, %zu rings, %zu vertices: %.1f ms, %zu moves, cut %.0f mm, rapid %.0f mm, "
+              "%d passes, %d contours, %d ramps, %d plunges in air, %d into stock, %d retracts\n",
+              level.centre.size(), vertices, ms, moves.size(), clearingLength(moves, true),
+              clearingLength(moves, false), stats.passes, stats.contours, stats.ramps, stats.plunges_in_air,
+              stats.plunges_into_stock, stats.retracts);
+  EXPECT_LT(ms, 100);  // aim: well under 50 ms with -O2
+  EXPECT_LE(worstCoverage(level.centre, moves, level.z, 2.5), 1 + 1e-3);
+  EXPECT_EQ(stats.plunges_into_stock, 0);
+}
+
+TEST(ClearingPaths, RandomRegionsAreSound) {
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (int trial = 0; trial < 40; ++trial) {
+    SCOPED_TRACE(trial);
+    // Overlapping discs and boxes, less a few discs: cusps, thin necks, islands, separate pieces.
+    std::vector<Ring> solid, holes;
+    for (int i = 0; i < 6; ++i) {
+      const Point2 c(60 * unit(random), 40 * unit(random));
+      if (unit(random) < 0.5) solid.push_back(circle(c, 3 + 10 * unit(random), 40));
+      else solid.push_back(rectangle(c.x(), c.y(), c.x() + 2 + 25 * unit(random), c.y() + 0.5 + 12 * unit(random)));
+    }
+    for (int i = 0; i < 4; ++i) holes.push_back(circle({60 * unit(random), 40 * unit(random)}, 1 + 5 * unit(random), 30));
+    const Region centre = subtract(region(solid), region(holes));
+    if (regionEmpty(centre)) continue;
+    ClearingLevel level = levelOf(centre, intersect(centre, region({circle({30, 20}, 15 * unit(random))})));
+    ClearingOptions options = optionsOf(0.5 + 4 * unit(random), 180 * unit(random), unit(random) < 0.7);
+    options.ramp_angle_deg = 1 + 10 * unit(random);
+    ClearingStats stats;
+    const std::vector<ClearingPoint> moves = clearChecked(level, options, stats);
+    if (options.contour_pass) {
+      EXPECT_LE(worstCoverage(centre, moves, level.z, 1.0), options.stepover / 2 + 0.06);
+    }
+  }
+}
