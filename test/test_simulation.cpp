@@ -234,6 +234,25 @@ TEST(Simulation, CleanPathAroundAndAboveThePartPasses) {
   EXPECT_NEAR(r.regions[0].box.min.z(), -2, 1e-9);
 }
 
+TEST(Simulation, DiagonalMovePastACornerAtACoarseLatticeIsMeasuredOnItsLine) {
+  // A flat 6 mm tool moves diagonally past the block's corner (40, 20) at mid height, `clearance` from the corner's
+  // edge, at a 1.6 mm lattice. A sweep pose holding the move's sideways part at its end while it slides along the rays
+  // stood 0.56 mm off the line, towards the corner: 0.05 mm of clearance read as a 0.5 mm gouge. Moving 0.5 mm into
+  // the corner is a gouge all the same.
+  const Vec3 outward = Vec3(1, 1, 0).normalized(), along = Vec3(1, -1, 0).normalized();
+  for (const double clearance : {0.05, -0.5}) {
+    const Vec3 centre = Vec3(40, 20, 5) + (3 + clearance) * outward;
+    const auto r = verify(pass("flat6", centre - 20 * along, centre + 20 * along), kFlat, options(1.6, 2));
+    if (clearance > 0) {
+      EXPECT_EQ(r.gouges, 0) << r.worst_gouge_mm;
+      EXPECT_EQ(r.collisions, 0) << r.worst_collision_mm;
+    } else {
+      EXPECT_GT(r.gouges, 0);
+      EXPECT_LE(r.worst_gouge_mm, 0.5 + 0.01);
+    }
+  }
+}
+
 TEST(Simulation, TiltingMoveSweepsWithoutGaps) {
   // 20 mm along x while the axis tilts 40 degrees: the holder-length lever makes the fine sub-steps matter.
   const double a = 40 * kPi / 180;

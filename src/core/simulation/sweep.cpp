@@ -115,9 +115,10 @@ class Worker {
     }
     const ToolPose from{path[run.first - 1].tip, path[run.first - 1].axis};
     const double step = options_.step_fraction * stock_.lattice.minSpacing();
+    const double deviation = std::max(0.5 * options_.tolerance, 1e-4);
     std::size_t most = 0;
     for (int axis = 0; axis < 3; ++axis) {
-      const std::vector<SweepPose> poses = movePoses(from, to, tool, stock_.lattice.box, step, axis);
+      const std::vector<SweepPose> poses = movePoses(from, to, tool, stock_.lattice.box, step, deviation, axis);
       for (std::size_t s = 0; s < poses.size(); ++s) {
         finding_ = MoveFinding();
         cutPose(tool, poses[s], rapid, axis);

@@ -27,14 +27,29 @@ Vec3 slerp(const Vec3& a, const Vec3& b, double angle, double f) {
 
 int subSteps(double travel, double step) { return std::max(1, static_cast<int>(std::ceil(travel / step - 1e-9))); }
 
+// Sub-steps for a motion split into a part the pose covers exactly (`free`: along the tool axis for a rise, along the
+// rays for a slide) and the rest (`paced`). A pose stands for its whole sub-step by holding the paced part at its end
+// while the free part runs over the sub-step, which puts the tool up to |paced| |free| / (n |motion|) off the line
+// of the move at the start of the sub-step: n grows until that is at most `deviation`, so the sweep never cuts more
+// than `deviation` beyond the true one (and the paced part alone is held to `step` between poses).
+int stepsWithFreePart(double paced, double free, double step, double deviation) {
+  const double motion = std::hypot(paced, free);
+  int n = subSteps(paced, step);
+  if (motion > 0.0 && paced * free / (n * motion) > deviation)
+    n = std::max(n, subSteps(paced * free / motion, deviation));
+  return n;
+}
+
 // The axis does not turn: the motion along the axis (rise) or along the rays (slide) is free, whichever saves more.
-std::vector<SweepPose> translationPoses(const ToolPose& from, const ToolPose& to, double step, int axis) {
+std::vector<SweepPose> translationPoses(const ToolPose& from, const ToolPose& to, double step, double deviation,
+                                        int axis) {
   const Vec3& a = to.axis;
   const Vec3 motion = to.tip - from.tip;
   const double axial = motion.dot(a);
   Vec3 across_rays = motion;
   across_rays[axis] = 0.0;
-  const int rising = subSteps((motion - axial * a).norm(), step), sliding = subSteps(across_rays.norm(), step);
+  const int rising = stepsWithFreePart((motion - axial * a).norm(), std::abs(axial), step, deviation);
+  const int sliding = stepsWithFreePart(across_rays.norm(), std::abs(motion[axis]), step, deviation);
   const bool slide = std::abs(a[axis]) < 1.0 - 1e-12 && sliding < rising;
   const int count = slide ? sliding : rising;
   std::vector<SweepPose> poses(count);
@@ -77,9 +92,9 @@ std::vector<StraightRun> straightRuns(const Toolpath& path) {
 }
 
 std::vector<SweepPose> movePoses(const ToolPose& from, const ToolPose& to, const ToolSolid& tool, const Box& stock_box,
-                                 double step, int axis) {
+                                 double step, double deviation, int axis) {
   const double angle = std::acos(std::clamp(from.axis.dot(to.axis), -1.0, 1.0));
-  if (angle < 1e-9) return translationPoses(from, to, step, axis);
+  if (angle < 1e-9) return translationPoses(from, to, step, deviation, axis);
   const double reach = std::min(std::hypot(tool.length, tool.max_radius),
                                 std::max(farthestCorner(stock_box, from.tip), farthestCorner(stock_box, to.tip)));
   const Vec3 motion = to.tip - from.tip;
