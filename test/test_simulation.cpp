@@ -253,6 +253,26 @@ TEST(Simulation, DiagonalMovePastACornerAtACoarseLatticeIsMeasuredOnItsLine) {
   }
 }
 
+TEST(Simulation, RapidDownAPassJustCutIsNoCollisionAtACoarseLattice) {
+  // A pass in the stock beside the block, then a rapid straight down into the groove it cut, on the same line: the
+  // tool comes down inside what it swept. At a 3 mm lattice, poses half a spacing apart leave cusps of 0.09 mm on
+  // the groove's sides (step^2 / 8r) that the rapid read as a collision; the cusp bound holds the step to 0.35 mm.
+  Toolpath path = {at("flat6", MoveKind::Rapid, -10, -6, 40), at("flat6", MoveKind::Feed, -10, -6, 2),
+                   at("flat6", MoveKind::Feed, 50, -6, 2), at("flat6", MoveKind::Feed, 50, -6, 40)};
+  for (double x = 3.3; x < 40; x += 4.1) {
+    path.push_back(at("flat6", MoveKind::Rapid, x, -6, 40));
+    path.push_back(at("flat6", MoveKind::Rapid, x, -6, 2.5));
+    path.push_back(at("flat6", MoveKind::Rapid, x, -6, 40));
+  }
+  VerifyOptions o = options(3.0, 10);
+  const auto r = verify(path, kFlat, o);
+  EXPECT_EQ(r.collisions, 0) << r.worst_collision_mm;
+  EXPECT_EQ(r.gouges, 0);
+  o.cusp_step = false;
+  const auto cusped = verify(path, kFlat, o);
+  EXPECT_GT(cusped.collisions, 0) << "without the bound the cusps are there to be found";
+}
+
 TEST(Simulation, TiltingMoveSweepsWithoutGaps) {
   // 20 mm along x while the axis tilts 40 degrees: the holder-length lever makes the fine sub-steps matter.
   const double a = 40 * kPi / 180;
@@ -262,7 +282,8 @@ TEST(Simulation, TiltingMoveSweepsWithoutGaps) {
   const auto normal = verify(path, kFlat, o);
   o.step_fraction = 0.05;
   const auto fine = verify(path, kFlat, o);
-  o.step_fraction = 4;  // eight times the bound: the sweep leaves ridges
+  o.step_fraction = 4;  // eight times the bound (and no cusp bound, which would hold the step down): ridges
+  o.cusp_step = false;
   const auto coarse = verify(path, kFlat, o);
   EXPECT_GT(fine.poses, 5 * normal.poses);
   EXPECT_NEAR(normal.removed_volume_mm3, fine.removed_volume_mm3, 0.0005 * fine.removed_volume_mm3);

@@ -8,7 +8,9 @@
 // distance rho from the tip moves by at most |dT| + dangle * rho between poses, so no point of the outline moves more
 // than step_fraction * resolution (default half the finest lattice spacing) from one pose to the next, at any height,
 // rotations about the tip included. What a swept solid removes between two poses is then at most a cusp of
-// step^2 / (8 r) (r the radius of the outline there): 0.0004 mm for a 6 mm tool at 0.2 mm resolution.
+// step^2 / (8 r) (r the radius of the outline there): 0.0004 mm for a 6 mm tool at 0.2 mm resolution. The step is
+// also held to sqrt(4 rho tolerance) (rho the flutes' widest radius), so cusps stay under half the tolerance at coarse
+// lattices too.
 // When the axis does not turn, one direction of the motion costs no sub-steps, chosen per family of rays (the three
 // are independent), whichever leaves the fewest:
 //  - along the tool axis: a solid of revolution swept along its own axis is exactly itself plus a cylinder of its top
@@ -62,6 +64,7 @@ struct MoveFinding {
 struct SweepOptions {
   double tolerance = 0.01;     // mm: deeper gouges and collisions count
   double step_fraction = 0.5;  // of the finest lattice spacing: the most any tool point moves between poses
+  bool cusp_step = true;       // also hold the step to sqrt(4 rho tolerance) (cusps under half the tolerance)
   int threads = 0;             // 0 = the hardware's
 };
 

@@ -26,6 +26,7 @@ struct VerifyOptions {
   double stock_margin = 2.0;   // mm around the part's box, when no stock mesh is given
   const Mesh* stock_mesh = nullptr;  // the raw stock instead of a box (the part is always inside it)
   double step_fraction = 0.5;  // sub-step bound, of the resolution (sweep.h)
+  bool cusp_step = true;       // and the cusp bound (sweep.h)
   int threads = 0;             // 0 = the hardware's
   int max_listed = 100;        // entries per list in the report (the totals count them all)
   double tool_chord_mm = 0.001;  // how closely a bull mill's torus corner is followed

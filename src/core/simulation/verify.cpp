@@ -107,6 +107,7 @@ VerificationReport verifyToolpath(const Mesh& part, const std::vector<int>& tria
   SweepOptions sweep_options;
   sweep_options.tolerance = options.tolerance;
   sweep_options.step_fraction = options.step_fraction;
+  sweep_options.cusp_step = options.cusp_step;
   sweep_options.threads = options.threads;
   const SweepResult sweep = sweepToolpath(stock, part_dexels, distance, path, solids, sweep_options);
   r.poses = sweep.poses;
