@@ -443,24 +443,14 @@ TEST(SetupCli, PlanWritesPlanJsonWithTheSetups) {
   ASSERT_TRUE(j["verification"].is_object());
   for (const char* figure : {"gouges", "collisions", "passed", "removed_volume_mm3", "leftover_volume_mm3"})
     EXPECT_TRUE(j["verification"].contains(figure)) << figure;
-  // Zero gouges and collisions on this part is issue 6's figure, not reached yet: DISABLED_PlanOnTheExampleIsClean.
+  // Issue 6's figure: the simulation finds no gouge and no collision in the example's plan.
+  EXPECT_EQ(j["verification"]["gouges"], 0);
+  EXPECT_EQ(j["verification"]["collisions"], 0);
   for (const char* stage : {"load", "visibility", "setups", "roughing", "verification", "post"})
     EXPECT_TRUE(j["timings"].contains(stage)) << stage;
   for (const char* file : {"setups.png", "mesh.stl", "visibility.bits", "toolpaths.csv", "tools.json", "program.ngc",
                            "remaining.png"})
     EXPECT_TRUE(std::ifstream(dir + "/" + file).good()) << file;
-}
-
-// Issue 6, open: the simulation finds gouges in the example's roughing plan (536 at plan's 3.1 mm lattice, up to
-// ~0.4 mm deep) and 28 collisions; featuretype's plan shows the same kind of gouges only at coarse lattices (none at
-// 0.5 mm, 4 at 1.5 mm), so the verification at coarse lattices is suspect. Enable when settled.
-TEST(SetupCli, DISABLED_PlanOnTheExampleIsClean) {
-  const std::string dir = test::tempDir();
-  const CliRun plan = runCli("plan " + kExample + " --out " + dir + " --level 2");
-  ASSERT_EQ(plan.status, 0) << plan.err;
-  const auto j = nlohmann::json::parse(slurp(dir + "/plan.json"));
-  EXPECT_EQ(j["verification"]["gouges"], 0);
-  EXPECT_EQ(j["verification"]["collisions"], 0);
 }
 
 // --- inputs, options and the report ----------------------------------------------------------------------------

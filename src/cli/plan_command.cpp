@@ -1,8 +1,9 @@
 // art2part plan PART --out DIR [--mode 3axis|5axis] [--tilt DEG] [--level L] [--time-limit S] [--no-pp]
 //                    [--tools FILE] [--tool ID] [--allowance MM] [--stepdown MM] [--no-rest] [--machine FILE]
-//                    [--verify-resolution MM]
+//                    [--verify-resolution MM] [--roughing 3axis|5axis]
 //                    plus the visibility options: the pipeline without ROS. Part -> visibility -> setups -> roughing
-// -> verification -> post. Writes DIR/plan.json, toolpaths.csv, tools.json, mesh.stl, program.ngc (with setup_<k>.ngc,
+// -> verification -> post. --roughing 5axis (the default with --mode 5axis) adds 5-axis voxel roughing after each
+// setup's 3-axis operations and posts for the trunnion (config/machines/trunnion_ac.yaml) unless --machine says. Writes DIR/plan.json, toolpaths.csv, tools.json, mesh.stl, program.ngc (with setup_<k>.ngc,
 // tool tables, trajectory.csv), setups.png, remaining.png (the stock left, coloured by its thickness) and the
 // visibility contract files (directions.csv, visibility.bits).
 #include <algorithm>
@@ -137,6 +138,10 @@ RoughingOptions roughingOptionsFrom(const Arguments& a) {
   options.rest_pass = !a.has("no-rest");
   if (!(options.allowance >= 0) || !(options.stepdown >= 0))
     throw UsageError("--allowance and --stepdown must not be negative");
+  // 5-axis voxel roughing after the 3-axis operations: asked for, or implied by 5-axis setups.
+  const std::string roughing = a.value("roughing", a.value("mode", "3axis") == "5axis" ? "5axis" : "3axis");
+  if (roughing != "3axis" && roughing != "5axis") throw UsageError("--roughing is 3axis or 5axis");
+  options.five_axis = roughing == "5axis";
   return options;
 }
 
@@ -185,7 +190,7 @@ void writeRemainingPicture(const Part& part, const VerificationState& state, con
 
 int runPlan(const std::vector<std::string>& args) {
   std::set<std::string> options = setupValueOptions();
-  for (const char* o : {"out", "tools", "tool", "allowance", "stepdown", "machine", "verify-resolution"}) options.insert(o);
+  for (const char* o : {"out", "tools", "tool", "allowance", "stepdown", "machine", "verify-resolution", "roughing"}) options.insert(o);
   std::set<std::string> flags = setupFlags();
   flags.insert("no-rest");
   const Arguments a(args, flags, options);
@@ -196,7 +201,8 @@ int runPlan(const std::vector<std::string>& args) {
   const VisibilityOptions visibility_options = visibilityOptionsFrom(a);
   const RoughingOptions roughing_options = roughingOptionsFrom(a);
   const ToolLibrary library = loadToolLibrary(a.value("tools", std::string(ART2PART_CONFIG_DIR) + "/tools.yaml"));
-  const Machine machine = loadMachine(a.value("machine", std::string(ART2PART_CONFIG_DIR) + "/machines/vmc_3axis.yaml"));
+  const std::string default_machine = roughing_options.five_axis ? "trunnion_ac.yaml" : "vmc_3axis.yaml";
+  const Machine machine = loadMachine(a.value("machine", std::string(ART2PART_CONFIG_DIR) + "/machines/" + default_machine));
   nlohmann::json timings;
   const auto all = Clock::now();
 

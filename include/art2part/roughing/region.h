@@ -26,7 +26,8 @@ std::vector<Ring> regionRings(const Region& region);  // mm; outer rings CCW, ho
 Region unite(const Region& a, const Region& b);
 Region subtract(const Region& a, const Region& b);
 Region intersect(const Region& a, const Region& b);
-// Minkowski sum with a disc of radius `mm` (negative: erosion), round joins followed within 1 um.
+// Minkowski sum with a disc of radius `mm` (negative: erosion), round joins followed within 5 um
+// (chords inside the true arcs).
 Region offsetRegion(const Region& region, double mm);
 // Drops rings whose area is below `min_area_mm2` (slivers left by offsets), with their holes.
 Region dropSlivers(const Region& region, double min_area_mm2);

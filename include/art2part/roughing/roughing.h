@@ -35,6 +35,11 @@ struct RoughingOptions {
   int rest_passes = 1;          // at most this many, each tool at most half the previous one
   double tool_area_fraction = 0.85;  // the largest tool clearing at least this fraction of the best area
   double rapid_mm_min = 10000;  // for time estimates
+  // 5-axis voxel roughing after each setup's 3-axis operations (voxel_roughing.h).
+  bool five_axis = false;
+  double max_tilt_deg = 60;     // the most the tool leans from the setup direction while cutting
+  int cone_level = 3;           // sphere level of the voxels' visibility cones (256 directions at 3)
+  double transition_sr = 0.01;  // least solid angle two neighbouring voxels' cones share for a move between them
 };
 
 struct RoughingLevel {

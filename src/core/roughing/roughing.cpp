@@ -197,7 +197,7 @@ RoughingOperation roughSetup(const Part& part, const Setup& setup, int setup_ind
   const ShadowStack shadows(g.part, part.mesh.triangles, shadowHeights(levels, zones));
   std::vector<SlabState> slabs;
   std::vector<Region> left_above;  // left_above[j]: the union of the stock left in slabs 0..j
-  Region forbidden;  // everything forbidden at this level or any above
+  Region forbidden;  // everything forbidden at this level, and so at any above
   double top = g.stock_top;
   for (RoughingLevel& level : levels) {
     const double z = level.z;
@@ -221,7 +221,8 @@ RoughingOperation roughSetup(const Part& part, const Setup& setup, int setup_ind
       if (n > 0) body = unite(body, left_above[n - 1]);
       forbid = unite(forbid, offsetRegion(body, zone.radius + options.holder_margin));
     }
-    forbidden = unite(forbidden, forbid);
+    // Shadows and the stock left above only grow downwards, so forbid holds every level above's already.
+    forbidden = std::move(forbid);
 
     ClearingLevel clear;
     clear.z = z;

@@ -4,6 +4,7 @@
 
 #include "art2part/roughing/roughing.h"
 #include "art2part/roughing/shadow.h"
+#include "art2part/roughing/voxel_roughing.h"
 
 namespace art2part {
 
@@ -129,6 +130,16 @@ RoughingPlan planRoughing(const Part& part, const SetupPlan& setups, const ToolL
       if (cuts(op)) plan.operations.push_back(std::move(op));
       left = std::move(still);
       previous = rest;
+    }
+    // 5-axis voxel roughing over what the 3-axis operations left, with a flat mill of the rest tool's size class
+    // (at most half the main tool: what the main tool could not reach upright, it rarely reaches leaning over).
+    if (options.five_axis) {
+      std::vector<const Tool*> tilted;
+      for (const Tool* t : candidates)
+        if (t->type == ToolType::Flat && t->diameter <= 0.5 * tool->diameter + 1e-9 && t->diameter >= 3 - 1e-9)
+          tilted.push_back(t);
+      RoughingOperation op = voxelRoughSetup(part, setup, k, tilted, options, left);
+      if (cuts(op)) plan.operations.push_back(std::move(op));
     }
   }
   for (int i = 0; i < static_cast<int>(plan.operations.size()); ++i) {

@@ -23,14 +23,14 @@ int next(int corner) { return corner == 2 ? 0 : corner + 1; }
 int downEdge(int mask) {
   for (int e = 0; e < 3; ++e)
     if ((mask >> e & 1) && !(mask >> next(e) & 1)) return e;
-  return -1;
+  return 0;  // not reached: asked only of straddling triangles (mask 1..6), which have one of each
 }
 
 // The up edge (below -> above).
 int upEdge(int mask) {
   for (int e = 0; e < 3; ++e)
     if (!(mask >> e & 1) && (mask >> next(e) & 1)) return e;
-  return -1;
+  return 0;  // not reached, as above
 }
 
 std::uint64_t directedEdgeKey(int from, int to) {
