@@ -26,9 +26,14 @@ std::vector<Ring> regionRings(const Region& region);  // mm; outer rings CCW, ho
 Region unite(const Region& a, const Region& b);
 Region subtract(const Region& a, const Region& b);
 Region intersect(const Region& a, const Region& b);
-// Minkowski sum with a disc of radius `mm` (negative: erosion), round joins followed within 5 um
-// (chords inside the true arcs).
-Region offsetRegion(const Region& region, double mm);
+// Minkowski sum with a disc of radius `mm` (negative: erosion), round joins followed within `arc_tolerance` mm
+// (chords inside the true arcs, so the result is smaller than the exact sum by at most that).
+constexpr double kArcTolerance = 0.005;
+Region offsetRegion(const Region& region, double mm, double arc_tolerance = kArcTolerance);
+// Douglas-Peucker on every ring: vertices dropped while the ring stays within `tolerance` mm of the original, so
+// every point of the region lies within `tolerance` of the result and the other way round (offset the result by
+// `tolerance` more to cover the original). A ring that would shrink below three vertices is kept as it is.
+Region simplifyRegion(const Region& region, double tolerance);
 // Drops rings whose area is below `min_area_mm2` (slivers left by offsets), with their holes.
 Region dropSlivers(const Region& region, double min_area_mm2);
 

@@ -24,6 +24,8 @@ class ShadowSweep {
   // The shadow at z; calls must come with z decreasing. Material exactly at z counts as above it.
   const Region& shadowAt(double z);
   int slabTriangles() const { return slab_triangles_; }  // triangle pieces projected so far
+  // What the last shadowAt added to the shadow before it: disjoint from it, so the shadow is the union of the gains.
+  const Region& lastGain() const { return gain_; }
 
  private:
   std::vector<Vec3> vertices_;
@@ -32,7 +34,7 @@ class ShadowSweep {
   std::size_t next_ = 0;            // first triangle of up_ not yet entered
   std::vector<int> active_;         // entered triangles reaching below the previous level
   double previous_z_;
-  Region shadow_;
+  Region shadow_, gain_;
   int slab_triangles_ = 0;
 };
 
@@ -44,10 +46,15 @@ class ShadowStack {
   ShadowStack(const std::vector<Vec3>& vertices, const std::vector<Triangle>& triangles, std::vector<double> heights);
   const Region& at(double z) const;
   int slabTriangles() const { return slab_triangles_; }
+  // The index of the stored height whose shadow at(z) is, -1 where at(z) is empty (above the part); and what the
+  // shadow at stored height i gained over the one above it (disjoint pieces: the shadow at i is the union of the
+  // gains 0..i). Together they let a caller grow an offset shadow level by level from the gains alone.
+  int indexAt(double z) const;
+  const Region& gain(int i) const { return gains_[i]; }
 
  private:
   std::vector<double> heights_;  // descending
-  std::vector<Region> shadows_;
+  std::vector<Region> shadows_, gains_;
   double part_top_ = 0;
   Region empty_;
   int slab_triangles_ = 0;

@@ -89,17 +89,78 @@ Region unite(const Region& a, const Region& b) { return clip(a, b, ClipperLib::c
 Region subtract(const Region& a, const Region& b) { return clip(a, b, ClipperLib::ctDifference); }
 Region intersect(const Region& a, const Region& b) { return clip(a, b, ClipperLib::ctIntersection); }
 
-// Round joins are flattened into chords whose vertices lie on the true arc, so an offset region is smaller than the
-// exact Minkowski sum by at most this (mm): 5 um, far inside the finishing allowance that forbidden regions keep,
-// and 99 vertices per full turn of a 10 mm radius instead of 222 at 1 um (offsets are most of roughing's time).
-constexpr double kArcTolerance = 0.005;
-
-Region offsetRegion(const Region& region, double mm) {
+// Round joins are flattened into chords whose vertices lie on the true arc. The default, 5 um, is far inside the
+// finishing allowance that forbidden regions keep, and gives 99 vertices per full turn of a 10 mm radius instead of
+// 222 at 1 um (offsets are most of roughing's time).
+Region offsetRegion(const Region& region, double mm, double arc_tolerance) {
   if (region.empty()) return {};
-  ClipperLib::ClipperOffset offset(2.0, kArcTolerance * kRegionScale);
+  ClipperLib::ClipperOffset offset(2.0, arc_tolerance * kRegionScale);
   offset.AddPaths(region, ClipperLib::jtRound, ClipperLib::etClosedPolygon);
   Region out;
   offset.Execute(out, mm * kRegionScale);
+  return out;
+}
+
+namespace {
+
+// Squared distance (integer units) from p to segment a-b.
+double segmentDistance2(const IntPoint& p, const IntPoint& a, const IntPoint& b) {
+  const double abx = static_cast<double>(b.X - a.X), aby = static_cast<double>(b.Y - a.Y);
+  const double apx = static_cast<double>(p.X - a.X), apy = static_cast<double>(p.Y - a.Y);
+  const double len2 = abx * abx + aby * aby;
+  const double t = len2 > 0 ? std::clamp((apx * abx + apy * aby) / len2, 0.0, 1.0) : 0.0;
+  const double dx = apx - t * abx, dy = apy - t * aby;
+  return dx * dx + dy * dy;
+}
+
+// Douglas-Peucker on the open chain path[from..to] (indices modulo n), marking the vertices kept.
+void keepChain(const Path& path, std::size_t from, std::size_t to, double tolerance2, std::vector<char>& keep) {
+  const std::size_t n = path.size();
+  std::vector<std::pair<std::size_t, std::size_t>> stack{{from, to}};
+  while (!stack.empty()) {
+    const auto [a, b] = stack.back();
+    stack.pop_back();
+    double worst = -1;
+    std::size_t at = a;
+    for (std::size_t k = a + 1; k < b; ++k) {
+      const double d = segmentDistance2(path[k % n], path[a % n], path[b % n]);
+      if (d > worst) worst = d, at = k;
+    }
+    if (worst <= tolerance2) continue;
+    keep[at % n] = 1;
+    stack.push_back({a, at});
+    stack.push_back({at, b});
+  }
+}
+
+}  // namespace
+
+Region simplifyRegion(const Region& region, double tolerance) {
+  const double tolerance2 = tolerance * kRegionScale * tolerance * kRegionScale;
+  Region out;
+  out.reserve(region.size());
+  for (const Path& path : region) {
+    const std::size_t n = path.size();
+    if (n <= 4) {
+      out.push_back(path);
+      continue;
+    }
+    // Anchors: vertex 0 and the vertex farthest from it; each chain between them simplified on its own.
+    std::size_t far = 0;
+    double far2 = -1;
+    for (std::size_t k = 1; k < n; ++k) {
+      const double dx = static_cast<double>(path[k].X - path[0].X), dy = static_cast<double>(path[k].Y - path[0].Y);
+      if (dx * dx + dy * dy > far2) far2 = dx * dx + dy * dy, far = k;
+    }
+    std::vector<char> keep(n, 0);
+    keep[0] = keep[far] = 1;
+    keepChain(path, 0, far, tolerance2, keep);
+    keepChain(path, far, n, tolerance2, keep);
+    Path simple;
+    for (std::size_t k = 0; k < n; ++k)
+      if (keep[k]) simple.push_back(path[k]);
+    out.push_back(simple.size() >= 3 ? std::move(simple) : path);  // a ring within the tolerance of a segment stays
+  }
   return out;
 }
 

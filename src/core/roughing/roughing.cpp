@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "art2part/roughing/forbidden_region.h"
 #include "art2part/roughing/shadow.h"
 
 namespace art2part {
@@ -14,34 +15,6 @@ constexpr double kPi = 3.14159265358979323846;
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-// A part of the tool body above the flutes that is wider than the cutter: from..to above the tip, its radius.
-struct BodyZone {
-  double from = 0, to = 0, radius = 0;
-};
-
-// The body above the flutes: shank and holder steps. A shank no wider than the cutter follows where the flutes have
-// cleared, in principle; it is checked all the same, since the cleared area is known only to the accuracy of the
-// offsets and of the passes.
-std::vector<BodyZone> bodyZones(const Tool& tool) {
-  std::vector<BodyZone> zones;
-  if (tool.stickout > tool.flute_length) zones.push_back({tool.flute_length, tool.stickout, tool.shank_diameter / 2});
-  // Holder steps whose radii differ by less than 10 mm are merged, as wide as the wider: one offset per level
-  // instead of one per step (a collet chuck's nut, body and flange), at the price of a few mm of reach under it.
-  double from = tool.stickout;
-  const std::size_t first_holder = zones.size();
-  for (const HolderStep& step : tool.holder) {
-    const double radius = step.diameter / 2;
-    if (zones.size() > first_holder && std::abs(zones.back().radius - radius) < 10) {
-      zones.back().to += step.length;
-      zones.back().radius = std::max(zones.back().radius, radius);
-    } else {
-      zones.push_back({from, from + step.length, radius});
-    }
-    from += step.length;
-  }
-  return zones;
 }
 
 // The part and its stock in one setup's frame.
@@ -73,16 +46,6 @@ double stepdownFor(const Tool& tool, const RoughingOptions& options) {
 double stepoverFor(const Tool& tool, const RoughingOptions& options) {
   const double step = options.stepover > 0 ? options.stepover : (tool.max_stepover > 0 ? tool.max_stepover : 0.4 * tool.diameter);
   return std::min(step, 0.9 * tool.diameter);  // passes must overlap or ridges stay between them
-}
-
-// The heights whose shadows an operation needs: its levels, and above each the bottom of every wide body zone.
-std::vector<double> shadowHeights(const std::vector<RoughingLevel>& levels, const std::vector<BodyZone>& zones) {
-  std::vector<double> heights;
-  for (const RoughingLevel& l : levels) {
-    heights.push_back(l.z);
-    for (const BodyZone& zone : zones) heights.push_back(l.z + zone.from);
-  }
-  return heights;
 }
 
 // The stock a previous operation left in the slab [z, top] (its slabs contain ours: our levels include theirs).
@@ -194,14 +157,19 @@ RoughingOperation roughSetup(const Part& part, const Setup& setup, int setup_ind
   clearing.ramp_angle_deg = options.ramp_angle_deg;
   clearing.clearance_z = g.stock_top + options.clearance;
 
-  const ShadowStack shadows(g.part, part.mesh.triangles, shadowHeights(levels, zones));
+  // Shadows at the levels only: a body zone's bottom between two levels takes the shadow of the level below it, a
+  // little more part (at most one step-down of it) than it needs, for a third of the sweep's work.
+  std::vector<double> heights;
+  for (const RoughingLevel& l : levels) heights.push_back(l.z);
+  const ShadowStack shadows(g.part, part.mesh.triangles, heights);
+  ForbiddenRegion forbidden_region(shadows, r + allowance, zones, options.holder_margin, true);
+  ForbiddenRegion part_with_allowance(shadows, allowance, {}, 0, false);  // a rest pass's target: the stock beyond it
   std::vector<SlabState> slabs;
-  std::vector<Region> left_above;  // left_above[j]: the union of the stock left in slabs 0..j
-  Region forbidden;  // everything forbidden at this level, and so at any above
+  slabs.reserve(levels.size());  // left_above points into it
+  std::vector<StockLeft> left_above;
   double top = g.stock_top;
   for (RoughingLevel& level : levels) {
     const double z = level.z;
-    const Region& shadow = shadows.at(z);
     Region stock = stockSlabRegion(g.stock.vertices, g.stock.triangles, z, top);
     if (before) {
       const Region* left = beforeRemaining(*before, z, top);
@@ -209,20 +177,13 @@ RoughingOperation roughSetup(const Part& part, const Setup& setup, int setup_ind
     }
     // What this operation is to remove: all the stock, or for a rest pass what lies beyond the allowance.
     Region target = stock;
-    if (before) target = dropSlivers(offsetRegion(offsetRegion(subtract(stock, offsetRegion(shadow, allowance)), -0.02), 0.02), 0.01);
-
-    Region forbid = offsetRegion(shadow, r + allowance);
-    for (const BodyZone& zone : zones) {
-      // Stock left in every slab reaching above the zone's bottom (also those above its top: the spindle is wider
-      // still), and the part above the zone's bottom.
-      Region body = shadows.at(z + zone.from);
-      std::size_t n = 0;
-      while (n < slabs.size() && slabs[n].top > z + zone.from) ++n;
-      if (n > 0) body = unite(body, left_above[n - 1]);
-      forbid = unite(forbid, offsetRegion(body, zone.radius + options.holder_margin));
+    if (before) {
+      const Region& skin = part_with_allowance.at(z, {});
+      target = dropSlivers(offsetRegion(offsetRegion(subtract(stock, skin), -0.02), 0.02), 0.01);
     }
-    // Shadows and the stock left above only grow downwards, so forbid holds every level above's already.
-    forbidden = std::move(forbid);
+    // The cutter against the part, shank and holder against the part and the stock left above; every level above's
+    // region is in it (the column over every cutting point is clear).
+    const Region& forbidden = forbidden_region.at(z, left_above);
 
     ClearingLevel clear;
     clear.z = z;
@@ -239,8 +200,8 @@ RoughingOperation roughSetup(const Part& part, const Setup& setup, int setup_ind
     level.cleared_mm2 = regionArea(intersect(stock, cleared));
     level.remaining_mm2 = regionArea(slab.remaining);
     level.rings = static_cast<int>(clear.centre.size());
-    left_above.push_back(left_above.empty() ? slab.remaining : unite(left_above.back(), slab.remaining));
     slabs.push_back(std::move(slab));
+    left_above.push_back({top, &slabs.back().remaining});
     top = z;
   }
   op.levels = std::move(levels);

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "art2part/roughing/forbidden_region.h"
 #include "art2part/roughing/roughing.h"
 #include "art2part/roughing/shadow.h"
 #include "art2part/roughing/voxel_roughing.h"
@@ -26,21 +27,10 @@ namespace {
 double sweptArea(const Tool& tool, const std::vector<double>& zs, const ShadowStack& shadows,
                  const std::vector<Region>& stocks, const RoughingOptions& options) {
   const double r = tool.diameter / 2;
-  std::vector<std::pair<double, double>> zones;  // from height, radius
-  if (tool.shank_diameter / 2 > r) zones.push_back({tool.flute_length, tool.shank_diameter / 2});
-  double from = tool.stickout;
-  for (const HolderStep& step : tool.holder) {
-    zones.push_back({from, step.diameter / 2});
-    from += step.length;
-  }
+  ForbiddenRegion forbidden(shadows, r + options.allowance, bodyZones(tool), options.holder_margin, false);
   double area = 0;
-  Region forbidden;
   for (std::size_t i = 0; i < zs.size(); ++i) {
-    Region forbid = offsetRegion(shadows.at(zs[i]), r + options.allowance);
-    for (const auto& [height, radius] : zones)
-      forbid = unite(forbid, offsetRegion(shadows.at(zs[i] + height), radius + options.holder_margin));
-    forbidden = unite(forbidden, forbid);
-    const Region centre = subtract(offsetRegion(stocks[i], r + 1.0), forbidden);
+    const Region centre = subtract(offsetRegion(stocks[i], r + 1.0), forbidden.at(zs[i], {}));
     area += regionArea(intersect(stocks[i], offsetRegion(centre, r)));
   }
   return area;

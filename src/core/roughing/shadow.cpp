@@ -85,7 +85,10 @@ ShadowSweep::ShadowSweep(const std::vector<Vec3>& vertices, const std::vector<Tr
 }
 
 const Region& ShadowSweep::shadowAt(double z) {
-  if (z >= previous_z_) return shadow_;
+  if (z >= previous_z_) {
+    gain_.clear();
+    return shadow_;
+  }
   while (next_ < up_.size() && top_[next_] >= z) active_.push_back(static_cast<int>(next_++));
   const double hi = previous_z_;
   std::vector<Ring> pieces;
@@ -98,7 +101,11 @@ const Region& ShadowSweep::shadowAt(double z) {
   }
   active_.swap(still);
   slab_triangles_ += static_cast<int>(pieces.size());
-  if (!pieces.empty()) shadow_ = unite(shadow_, regionFromPolygons(pieces));
+  gain_.clear();
+  if (!pieces.empty()) {
+    gain_ = subtract(regionFromPolygons(pieces), shadow_);
+    if (!gain_.empty()) shadow_ = unite(shadow_, gain_);
+  }
   previous_z_ = z;
   return shadow_;
 }
@@ -113,15 +120,21 @@ ShadowStack::ShadowStack(const std::vector<Vec3>& vertices, const std::vector<Tr
   for (double z : heights) {
     heights_.push_back(z);
     shadows_.push_back(sweep.shadowAt(z));
+    gains_.push_back(sweep.lastGain());
   }
   slab_triangles_ = sweep.slabTriangles();
 }
 
-const Region& ShadowStack::at(double z) const {
-  if (z > part_top_) return empty_;
+int ShadowStack::indexAt(double z) const {
+  if (z > part_top_) return -1;
   const auto it = std::lower_bound(heights_.begin(), heights_.end(), z, std::greater<double>());  // first <= z
   if (it == heights_.end()) throw std::out_of_range("ShadowStack: a height below every stored one");
-  return shadows_[it - heights_.begin()];
+  return static_cast<int>(it - heights_.begin());
+}
+
+const Region& ShadowStack::at(double z) const {
+  const int i = indexAt(z);
+  return i < 0 ? empty_ : shadows_[i];
 }
 
 namespace {

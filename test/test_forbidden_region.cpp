@@ -1,0 +1,126 @@
+// The forbidden region of 3-axis roughing, grown level by level from what is new (forbidden_region.h), against the
+// same region computed whole at every level from its definition; and the polygon simplification it relies on.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "art2part/roughing/forbidden_region.h"
+#include "art2part/roughing/shadow.h"
+#include "test_meshes.h"
+
+using namespace art2part;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// A closed, outward UV sphere of radius `radius` at the origin: every level cuts it, and the shadow grows at every
+// level down to the equator.
+Mesh sphere(double radius, int rings, int segments) {
+  Mesh m;
+  m.vertices.emplace_back(0, 0, radius);
+  for (int i = 1; i < rings; ++i) {
+    const double polar = kPi * i / rings;
+    for (int j = 0; j < segments; ++j) {
+      const double azimuth = 2 * kPi * j / segments;
+      m.vertices.emplace_back(radius * std::sin(polar) * std::cos(azimuth), radius * std::sin(polar) * std::sin(azimuth),
+                              radius * std::cos(polar));
+    }
+  }
+  m.vertices.emplace_back(0, 0, -radius);
+  const int south = static_cast<int>(m.vertices.size()) - 1;
+  auto at = [&](int ring, int j) { return 1 + (ring - 1) * segments + (j % segments); };
+  for (int j = 0; j < segments; ++j) {
+    m.triangles.push_back({0, at(1, j), at(1, j + 1)});
+    for (int i = 1; i + 1 < rings; ++i) {
+      m.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+    m.triangles.push_back({at(rings - 1, j), south, at(rings - 1, j + 1)});
+  }
+  return m;
+}
+
+Region square(double x0, double y0, double x1, double y1) {
+  return regionFromPolygons({{Point2(x0, y0), Point2(x1, y0), Point2(x1, y1), Point2(x0, y1)}});
+}
+
+}  // namespace
+
+TEST(SimplifyRegion, StaysWithinTheToleranceBothWays) {
+  // A wavy ring: a circle of radius 20 with a 0.02 mm ripple, 2000 vertices.
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> ripple(-0.02, 0.02);
+  Ring ring;
+  for (int k = 0; k < 2000; ++k) {
+    const double a = 2 * kPi * k / 2000, r = 20 + ripple(random);
+    ring.emplace_back(r * std::cos(a), r * std::sin(a));
+  }
+  const Region original = regionFromPolygons({ring});
+  for (double tolerance : {0.01, 0.05, 0.2}) {
+    const Region simple = simplifyRegion(original, tolerance);
+    std::size_t before = 0, after = 0;
+    for (const auto& p : original) before += p.size();
+    for (const auto& p : simple) after += p.size();
+    // Below the ripple's amplitude most vertices stay; above it, most go.
+    EXPECT_LT(after, tolerance < 0.02 ? before : before / 4) << "tolerance " << tolerance;
+    // Each covers the other once grown by the tolerance (plus the arcs' chord error): nothing left over.
+    const double grow = tolerance + 2 * kArcTolerance;
+    EXPECT_LT(regionArea(subtract(original, offsetRegion(simple, grow))), 1e-6) << "tolerance " << tolerance;
+    EXPECT_LT(regionArea(subtract(simple, offsetRegion(original, grow))), 1e-6) << "tolerance " << tolerance;
+    // And the simplification was not for nothing: without the growth something sticks out.
+    EXPECT_GT(regionArea(subtract(original, simple)) + regionArea(subtract(simple, original)), 0);
+  }
+  // A ring too small to simplify stays as it is (dropping it would lose material).
+  const Region tiny = regionFromPolygons({{Point2(0, 0), Point2(0.01, 0), Point2(0.01, 0.002), Point2(0.005, 0.003),
+                                           Point2(0, 0.002)}});
+  EXPECT_NEAR(regionArea(simplifyRegion(tiny, 0.05)), regionArea(tiny), 1e-12);
+}
+
+TEST(ForbiddenRegion, GrownLevelByLevelIsTheWholeRegionUpToItsTolerances) {
+  const Mesh part = sphere(25, 48, 96);
+  const double r = 5.3;  // cutter radius + allowance
+  const std::vector<BodyZone> zones{{12, 40, 6}, {40, 80, 20}};
+  const double margin = 0.5;
+  std::vector<double> levels;
+  for (double z = 30; z >= -30; z -= 1) levels.push_back(z);
+  const ShadowStack shadows(part.vertices, part.triangles, levels);
+  ForbiddenRegion grown(shadows, r, zones, margin, true);
+  ForbiddenRegion against_part(shadows, r, zones, margin, false);
+  // The stock left in each slab: the slab's shadow with a skin that grows downwards (a part section is always in it),
+  // and a lump at a place of its own in a few slabs (stock a tool could not reach).
+  std::vector<Region> remaining;
+  std::vector<StockLeft> left_above;
+  remaining.reserve(levels.size());
+  double top = 40;
+  Region part_shadow_union;
+  for (std::size_t i = 0; i < levels.size(); ++i) {
+    const double z = levels[i];
+    const Region& forbidden = grown.at(z, left_above);
+    const Region& forbidden_part = against_part.at(z, {});
+    // The definition, whole: the cutter against the shadow at z, each zone against the stock left in every slab
+    // reaching above its bottom and the part above it; and without stock, each zone against the part alone.
+    Region whole = offsetRegion(shadows.at(z), r), whole_part = whole;
+    for (const BodyZone& zone : zones) {
+      Region left = shadows.at(z + zone.from);  // redundant with the stock left, which holds the part's sections
+      for (const StockLeft& s : left_above)
+        if (s.top > z + zone.from) left = unite(left, *s.remaining);
+      whole = unite(whole, offsetRegion(left, zone.radius + margin));
+      whole_part = unite(whole_part, offsetRegion(shadows.at(z + zone.from), zone.radius + margin));
+    }
+    for (const auto& [got, want, what] : {std::tuple{&forbidden, &whole, "with stock"},
+                                          std::tuple{&forbidden_part, &whole_part, "part only"}}) {
+      // Never smaller than the definition (a hair of integer rounding aside), and larger only by the tolerances:
+      // 0.1 mm of radius on the body zones (here at most 0.11 mm times the perimeter).
+      EXPECT_LT(regionArea(subtract(*want, *got)), 1e-4) << what << " at z " << z;
+      EXPECT_LT(regionArea(subtract(*got, *want)), 0.11 * 2 * kPi * 80) << what << " at z " << z;
+    }
+    const Region section = shadows.at(z);
+    Region left = unite(section, offsetRegion(section, 0.5 + 0.05 * i));
+    if (i % 10 == 3) left = unite(left, square(40, -5 + static_cast<double>(i) / 10, 45, 0));
+    remaining.push_back(left);
+    left_above.push_back({top, &remaining.back()});
+    top = z;
+  }
+}
