@@ -34,6 +34,9 @@ Region offsetRegion(const Region& region, double mm, double arc_tolerance = kArc
 // every point of the region lies within `tolerance` of the result and the other way round (offset the result by
 // `tolerance` more to cover the original). A ring that would shrink below three vertices is kept as it is.
 Region simplifyRegion(const Region& region, double tolerance);
+// Drops the pieces (outer ring with its holes) that an erosion by `half_width` empties: slivers thinner than twice
+// it everywhere. Pieces that survive stay whole.
+Region dropThinPieces(const Region& region, double half_width);
 // Drops rings whose area is below `min_area_mm2` (slivers left by offsets), with their holes.
 Region dropSlivers(const Region& region, double min_area_mm2);
 

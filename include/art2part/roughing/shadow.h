@@ -17,6 +17,8 @@ namespace art2part {
 std::vector<Vec3> toFrame(const std::vector<Vec3>& points, const SetupFrame& frame);
 Vec3 fromFrame(const Vec3& p, const SetupFrame& frame);  // back to the part frame
 
+constexpr double kThinGain = 0.002;  // mm
+
 class ShadowSweep {
  public:
   // `vertices` in the setup frame, the mesh's triangles (outward, counter-clockwise seen from outside).
@@ -24,7 +26,9 @@ class ShadowSweep {
   // The shadow at z; calls must come with z decreasing. Material exactly at z counts as above it.
   const Region& shadowAt(double z);
   int slabTriangles() const { return slab_triangles_; }  // triangle pieces projected so far
-  // What the last shadowAt added to the shadow before it: disjoint from it, so the shadow is the union of the gains.
+  // What the last shadowAt added to the shadow before it, less its pieces thinner than 2 kThinGain everywhere: disjoint
+  // from it, so the shadow lies within 2 kThinGain of the union of the gains (slivers of a wall a hair off the
+  // direction, thousands of them per level, whose offsets would cost as much as the whole outline's).
   const Region& lastGain() const { return gain_; }
 
  private:
@@ -48,7 +52,8 @@ class ShadowStack {
   int slabTriangles() const { return slab_triangles_; }
   // The index of the stored height whose shadow at(z) is, -1 where at(z) is empty (above the part); and what the
   // shadow at stored height i gained over the one above it (disjoint pieces: the shadow at i is the union of the
-  // gains 0..i). Together they let a caller grow an offset shadow level by level from the gains alone.
+  // gains 0..i, up to slivers within 2 kThinGain of it). Together they let a caller grow an offset shadow level by
+  // level from the gains alone.
   int indexAt(double z) const;
   const Region& gain(int i) const { return gains_[i]; }
 

@@ -55,7 +55,7 @@ const Region& ForbiddenRegion::at(double z, const std::vector<StockLeft>& left_a
   while (slab_gains_.size() < left_above.size()) {
     Region gain = subtract(*left_above[slab_gains_.size()].remaining, slabs_counted_);
     if (!gain.empty()) slabs_counted_ = unite(slabs_counted_, gain);
-    slab_gains_.push_back(std::move(gain));
+    slab_gains_.push_back(dropThinPieces(gain, kThinGain));  // slivers: as the shadow's gains
   }
   Region added;  // offset pieces of every layer, united with the region once
   for (Layer& layer : layers_) {
@@ -72,9 +72,10 @@ const Region& ForbiddenRegion::at(double z, const std::vector<StockLeft>& left_a
     if (fresh.empty()) continue;
     // Pieces gained at neighbouring heights touch: merged first, their offsets would overlap and the union of
     // overlapping offsets is what costs. Then simplified and offset with chords as coarse as the layer allows, both
-    // paid for by a larger radius (the region only grows: never a collision for an approximation).
+    // paid for by a larger radius (the region only grows: never a collision for an approximation), as are the
+    // slivers the gains leave out.
     fresh = simplifyRegion(unite(fresh, {}), layer.tolerance);
-    append(added, offsetRegion(fresh, layer.radius + 2 * layer.tolerance, layer.tolerance));
+    append(added, offsetRegion(fresh, layer.radius + 2 * layer.tolerance + 2 * kThinGain, layer.tolerance));
   }
   if (!added.empty()) forbidden_ = unite(forbidden_, added);
   return forbidden_;

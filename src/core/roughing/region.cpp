@@ -164,6 +164,13 @@ Region simplifyRegion(const Region& region, double tolerance) {
   return out;
 }
 
+Region dropThinPieces(const Region& region, double half_width) {
+  Region out;
+  for (const RegionPiece& piece : regionPieces(region))
+    if (!offsetRegion(piece.rings, -half_width).empty()) out.insert(out.end(), piece.rings.begin(), piece.rings.end());
+  return out;
+}
+
 Region dropSlivers(const Region& region, double min_area_mm2) {
   Region out;
   for (const RegionPiece& piece : regionPieces(region))

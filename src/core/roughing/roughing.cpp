@@ -38,8 +38,9 @@ SetupGeometry setupGeometry(const Part& part, const Setup& setup, const Roughing
   return g;
 }
 
-double stepdownFor(const Tool& tool, const RoughingOptions& options) {
+double stepdownFor(const Tool& tool, const RoughingOptions& options, bool rest) {
   double step = options.stepdown > 0 ? options.stepdown : (tool.max_stepdown > 0 ? tool.max_stepdown : tool.diameter / 2);
+  if (rest && options.rest_stepdown > 0) step = std::min(step, options.rest_stepdown);
   return std::min(step, tool.flute_length);
 }
 
@@ -141,7 +142,7 @@ RoughingOperation roughSetup(const Part& part, const Setup& setup, int setup_ind
   op.kind = before ? "rest roughing" : "roughing";
   const SetupGeometry g = setupGeometry(part, setup, options);
   std::vector<RoughingLevel> levels =
-      roughingLevels(part, g.part, g.stock_top, g.stock_bottom, stepdownFor(tool, options), options);
+      roughingLevels(part, g.part, g.stock_top, g.stock_bottom, stepdownFor(tool, options, before != nullptr), options);
   if (before) {  // our slabs must each lie in one of the previous operation's slabs
     for (const SlabState& s : *before)
       if (std::none_of(levels.begin(), levels.end(), [&](const RoughingLevel& l) { return std::abs(l.z - s.z) < 1e-9; }))

@@ -105,6 +105,7 @@ const Region& ShadowSweep::shadowAt(double z) {
   if (!pieces.empty()) {
     gain_ = subtract(regionFromPolygons(pieces), shadow_);
     if (!gain_.empty()) shadow_ = unite(shadow_, gain_);
+    gain_ = dropThinPieces(gain_, kThinGain);
   }
   previous_z_ = z;
   return shadow_;
