@@ -120,6 +120,47 @@ CoreSolution greedyCoreCover(const CoreProblem& core, bool use_bonus);
 // incomplete.
 CoreSolution branchAndBound(const CoreProblem& core, const SearchStart& start, bool use_bonus, double time_limit_s);
 
+// ---- the Lagrangian relaxation (minimum_cover_bound.cpp) -----------------------------------------------------------
+
+// How far one subgradient optimisation goes.
+struct SubgradientPlan {
+  int iterations = 0;       // evaluations at most
+  double step = 1.0;        // the Polyak step factor at the start
+  double least_step = 0.0;  // stop when the factor, halved, falls below it
+  int window = 20;          // evaluations between adjustments of the factor
+  double goal = 0;          // stop once the bound exceeds it (the node can go)
+  double upper = 0;         // the size the step aims at (the incumbent's)
+};
+
+// The Lagrangian bound of the subproblem "cover the elements U with candidates of A": see minimum_cover_bound.cpp.
+class LagrangianBound {
+ public:
+  explicit LagrangianBound(const CoreProblem& core);
+  // Subgradient optimisation from the multipliers u (one per core element; only those of U are read and written),
+  // which end at the best found. Returns that bound; reducedCost then gives the reduced costs there, for A.
+  double optimise(const Word* U, const Word* A, double* u, const SubgradientPlan& plan);
+  double reducedCost(int candidate) const { return best_cost_[candidate]; }
+  double lastStep() const { return last_step_; }  // the step factor the last optimise ended with
+  // A cover of U by candidates of A, guided by the reduced costs of the last optimise; empty when it needs more than
+  // `limit` candidates or A cannot cover U.
+  std::vector<int> greedyCover(const Word* U, const Word* A, int limit) const;
+
+ private:
+  double evaluate(const Word* U, const Word* A, const double* u);
+  double computeSubgradient(const Word* U, const double* u);
+
+  const CoreProblem& core_;
+  const int cw_;
+  std::vector<double> cost_, best_cost_;  // per candidate, valid on A
+  std::vector<double> subgradient_, best_u_;  // per element, valid on U
+  std::vector<Word> chosen_;  // candidates with negative reduced cost
+  double last_step_ = 0;
+};
+
+// Multipliers with no negative reduced cost, where the bound is their sum: u_i = 1 / (most elements of U that an
+// allowed coverer of i covers). The start of the root's subgradient optimisation.
+void dualStart(const CoreProblem& core, const Word* U, const Word* A, double* u);
+
 // ---- shared by minimum_cover.cpp and minimum_cover_greedy.cpp -------------------------------------------------------
 
 // Throws std::invalid_argument when the matrices do not match or a weight is negative.

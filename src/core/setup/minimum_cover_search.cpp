@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <climits>
+#include <cstdio>
 #include <cmath>
 #include <functional>
 
@@ -23,6 +24,10 @@ namespace {
 
 bool betterBonus(double bonus, double best) { return bonus > best + 1e-9 * std::max(1.0, std::abs(best)); }
 
+// A Lagrangian bound above `budget` by more than this is taken as above it (sizes are whole numbers; the bound's
+// rounding error is far smaller).
+constexpr double kBoundTolerance = 1e-6;
+
 class BranchAndBound {
  public:
   BranchAndBound(const CoreProblem& core, bool use_bonus, double time_limit_s)
@@ -30,7 +35,9 @@ class BranchAndBound {
         use_bonus_(use_bonus),
         cw_(core.coverers.wordsPerRow()),
         ew_(core.covers.wordsPerRow()),
-        bw_(core.earns.wordsPerRow()) {
+        bw_(core.earns.wordsPerRow()),
+        lagrangian_(!use_bonus),
+        lagrange_(core) {
     if (std::isfinite(time_limit_s)) {
       has_deadline_ = true;
       deadline_ = std::chrono::steady_clock::now() +
@@ -70,7 +77,15 @@ class BranchAndBound {
     packings_.assign(depths, {});
     for (int e = 0; e < core_.elements; ++e) setBit(uncovered(0), e);
     for (int c = 0; c < core_.candidates; ++c) setBit(allowed(0), c);
+    if (lagrangian_) {
+      multipliers_.assign(static_cast<std::size_t>(depths) * core_.elements, 0.0);
+      narrowed_.assign(static_cast<std::size_t>(depths) * cw_, 0);
+      rootBound();
+    }
     search(0, 0.0);
+#ifdef MC_DEBUG
+    for (int d = 0; d < 12; ++d) if (dbg_nodes_[d]) std::fprintf(stderr, "depth %d nodes %ld pruned %ld bound %.3f allowed %.1f branches %.1f\n", d, dbg_nodes_[d], dbg_pruned_[d], dbg_bound_[d] / dbg_nodes_[d], dbg_allowed_[d] / double(dbg_nodes_[d] - dbg_pruned_[d] + 1e-9), dbg_branch_[d] / double(dbg_nodes_[d] - dbg_pruned_[d] + 1e-9));
+#endif
     CoreSolution out;
     out.chosen = best_;
     std::sort(out.chosen.begin(), out.chosen.end());
@@ -86,17 +101,27 @@ class BranchAndBound {
     int candidate, covered;
     double bonus;
     bool dominated;
+    double cost;  // Lagrangian reduced cost (size search), 0 otherwise
+  };
+
+  // What the Lagrangian stage of a node leaves: its bound, the element to branch on, and a candidate every better
+  // cover below takes (-1: none).
+  struct LagrangianNode {
+    double bound = 0;
+    int branch_element = -1, must_take = -1;
   };
 
   Word* uncovered(int depth) { return uncovered_.data() + static_cast<std::size_t>(depth) * ew_; }
   Word* allowed(int depth) { return allowed_.data() + static_cast<std::size_t>(depth) * cw_; }
   Word* earned(int depth) { return earned_.data() + static_cast<std::size_t>(depth) * bw_; }
+  double* multipliers(int depth) { return multipliers_.data() + static_cast<std::size_t>(depth) * core_.elements; }
+  Word* narrowed(int depth) { return narrowed_.data() + static_cast<std::size_t>(depth) * cw_; }
 
-  bool outOfTime() {
-    if (timed_out_) return true;
-    if (has_deadline_ && (nodes_ & 1023) == 1 && std::chrono::steady_clock::now() > deadline_) timed_out_ = true;
+  bool pastDeadline() {
+    if (has_deadline_ && std::chrono::steady_clock::now() > deadline_) timed_out_ = true;
     return timed_out_;
   }
+  bool outOfTime() { return timed_out_ || ((nodes_ & 15) == 1 && pastDeadline()); }
 
   void record(int size, double bonus) {
     if (size < best_size_ || (use_bonus_ && size == best_size_ && betterBonus(bonus, best_bonus_))) {
@@ -344,7 +369,7 @@ class BranchAndBound {
       record(depth, bonus);
       return;
     }
-    const int slots = best_size_ - depth;  // candidates that may still be added without a worse size
+    int slots = best_size_ - depth;  // candidates that may still be added without a worse size
     if (slots <= 0) return;
     std::vector<int>& packed = packings_[depth];
 
@@ -368,18 +393,33 @@ class BranchAndBound {
       forEachBit(relevant_.data(), cw_, [&](int c) { marginal_[c] = freshBonus(core_, core_.earns.row(c), E); });
       if (!betterBonus(bonus + bonusBound(slots, A, E, packed), best_bonus_)) return;
     }
+    LagrangianNode relaxed;
+    if (lagrangian_) {
+      if (!lagrangianNode(depth, U, A, relaxed)) return;
+      A = narrowed(depth);
+      branch_element = relaxed.branch_element;
+      slots = best_size_ - depth;  // the heuristic may have found a better cover
+    }
 
     std::vector<Branch>& branches = branches_[depth];
     branches.clear();
-    forEachBit(core_.coverers.row(branch_element), cw_, [&](int c) {
-      if (testBit(A, c))
-        branches.push_back({c, popcountAnd(core_.covers.row(c), U, ew_),
-                            use_bonus_ ? freshBonus(core_, core_.earns.row(c), E) : 0.0, false});
-    });
-    // Most newly covered first; in the bonus search most bonus first (good covers early prune most).
+    auto addBranch = [&](int c) {
+      branches.push_back({c, popcountAnd(core_.covers.row(c), U, ew_),
+                          use_bonus_ ? freshBonus(core_, core_.earns.row(c), E) : 0.0, false,
+                          lagrangian_ ? lagrange_.reducedCost(c) : 0.0});
+    };
+    if (relaxed.must_take >= 0)
+      addBranch(relaxed.must_take);  // every better cover below takes it: the only branch
+    else
+      forEachBit(core_.coverers.row(branch_element), cw_, [&](int c) {
+        if (testBit(A, c)) addBranch(c);
+      });
+    // Least reduced cost first in the size search, most bonus first in the bonus search (good covers early prune
+    // most), then most newly covered.
     const bool bonus_first = use_bonus_;
     std::sort(branches.begin(), branches.end(), [bonus_first](const Branch& a, const Branch& b) {
       if (bonus_first && a.bonus != b.bonus) return a.bonus > b.bonus;
+      if (a.cost != b.cost) return a.cost < b.cost;
       if (a.covered != b.covered) return a.covered > b.covered;
       if (a.bonus != b.bonus) return a.bonus > b.bonus;
       return a.candidate < b.candidate;
@@ -421,7 +461,85 @@ class BranchAndBound {
       if (timed_out_) return;
       if (lower > best_size_ - depth) return;  // the incumbent improved past what this node can offer
       if (lower == best_size_ - depth && !use_bonus_) return;
+      if (lagrangian_ && relaxed.bound > best_size_ - 1 - depth + kBoundTolerance) return;
     }
+  }
+
+  // ---- the Lagrangian stage of the size search ----
+
+  // Before the search: the root's multipliers from a dual solution, then a long subgradient optimisation in rounds,
+  // each followed by the Lagrangian greedy heuristic (a better incumbent prunes more from the start).
+  void rootBound() {
+    const Word* U = uncovered(0);
+    const Word* A = allowed(0);
+    double* u = multipliers(0);
+    dualStart(core_, U, A, u);
+    double factor = 0.1;
+    for (int round = 0; round < kRootRounds && !pastDeadline(); ++round) {
+      SubgradientPlan plan;
+      plan.iterations = kRootRoundIterations;
+      plan.step = factor;
+      plan.least_step = kRootLeastStep;
+      plan.window = kRootWindow;
+      plan.goal = best_size_ - 1 + kBoundTolerance;
+      plan.upper = best_size_;
+      const double bound = lagrange_.optimise(U, A, u, plan);
+      factor = lagrange_.lastStep();
+#ifdef MC_DEBUG
+      std::fprintf(stderr, "round %d bound %.4f factor %.4f\n", round, bound, factor);
+#endif
+      tryHeuristic(0, U, A);
+      if (bound > best_size_ - 1 + kBoundTolerance || factor < kRootLeastStep) break;
+    }
+  }
+
+  // The Lagrangian greedy cover of the node's subproblem, recorded when it makes a better cover with the stack.
+  void tryHeuristic(int depth, const Word* U, const Word* A) {
+    const std::vector<int> cover = lagrange_.greedyCover(U, A, best_size_ - 1 - depth);
+    if (cover.empty()) return;
+    stack_.insert(stack_.end(), cover.begin(), cover.end());
+    record(depth + static_cast<int>(cover.size()), 0.0);
+    stack_.resize(depth);
+  }
+
+  // The node's Lagrangian bound, warm started from the parent's multipliers; the heuristic; then the allowed
+  // candidates narrowed by reduced cost into narrowed(depth): out when every cover taking one is too large, and a
+  // must-take when every cover without one is. False when no better cover lies below.
+  bool lagrangianNode(int depth, const Word* U, const Word* A, LagrangianNode& out) {
+    double* u = multipliers(depth);
+    if (depth > 0) {
+      const double* parent = multipliers(depth - 1);
+      forEachBit(U, ew_, [&](int i) { u[i] = parent[i]; });
+    }
+    SubgradientPlan plan;
+    plan.iterations = kNodeIterations;
+    plan.step = kNodeStep;
+    plan.least_step = kNodeStep / 16;
+    plan.window = kNodeWindow;
+    plan.goal = best_size_ - 1 - depth + kBoundTolerance;
+    plan.upper = best_size_ - depth;
+    out.bound = lagrange_.optimise(U, A, u, plan);
+#ifdef MC_DEBUG
+    if (depth < 12) { dbg_nodes_[depth]++; dbg_bound_[depth] += out.bound; if (out.bound > best_size_ - 1 - depth + kBoundTolerance) dbg_pruned_[depth]++; }
+    if (depth == 0) std::fprintf(stderr, "root bound %.4f incumbent %d\n", out.bound, best_size_);
+#endif
+    if (out.bound > best_size_ - 1 - depth + kBoundTolerance) return false;
+    tryHeuristic(depth, U, A);
+    const double room = best_size_ - 1 - depth - out.bound + kBoundTolerance;  // what a reduced cost may add
+    if (room < 0) return false;
+    Word* N = narrowed(depth);
+    std::copy(A, A + cw_, N);
+    out.must_take = -1;
+    forEachBit(A, cw_, [&](int j) {
+      const double cost = lagrange_.reducedCost(j);
+      if (cost > room) clearBit(N, j);
+      else if (-cost > room && out.must_take < 0) out.must_take = j;
+    });
+    out.branch_element = fewestCoverers(U, N);
+#ifdef MC_DEBUG
+    if (depth < 12) { dbg_allowed_[depth] += popcount(N, cw_); dbg_branch_[depth] += out.must_take >= 0 ? 1 : popcountAnd(core_.coverers.row(out.branch_element), N, cw_); }
+#endif
+    return out.branch_element >= 0 && popcountAnd(core_.coverers.row(out.branch_element), N, cw_) > 0;
   }
 
   // The size bound of a node: max(packing, dual) over the candidates that count for it (packing into `packed`).
@@ -463,9 +581,24 @@ class BranchAndBound {
     return element;
   }
 
+  // The subgradient optimisation: at the root in rounds (each then the heuristic), at the other nodes a few steps
+  // from the parent's multipliers.
+  static constexpr int kRootRounds = 40, kRootRoundIterations = 50, kRootWindow = 20;
+  static constexpr double kRootLeastStep = 0.002;
+  static constexpr int kNodeIterations = 15, kNodeWindow = 5;
+  static constexpr double kNodeStep = 0.2;
+
   const CoreProblem& core_;
   const bool use_bonus_;
   const int cw_, ew_, bw_;
+  const bool lagrangian_;  // the size search bounds by the Lagrangian relaxation and narrows by reduced costs
+  LagrangianBound lagrange_;
+  std::vector<double> multipliers_;  // per depth, one per core element
+  std::vector<Word> narrowed_;       // per depth: the allowed candidates after reduced-cost fixing
+#ifdef MC_DEBUG
+  long dbg_nodes_[12] = {}, dbg_pruned_[12] = {};
+  double dbg_bound_[12] = {}, dbg_allowed_[12] = {}, dbg_branch_[12] = {};
+#endif
   bool has_deadline_ = false, timed_out_ = false, improved_ = false, size_is_minimal_ = false;
   std::chrono::steady_clock::time_point deadline_;
   long long nodes_ = 0;

@@ -1,0 +1,162 @@
+// The minimum cover, part 4: the Lagrangian relaxation of the covering problem on the cyclic core, the size bound of
+// the exact search (minimum_cover_search.cpp), and the primal heuristic it guides. After J. E. Beasley, "A
+// Lagrangian heuristic for set-covering problems" (Naval Research Logistics 37, 1990) and A. Caprara, M. Fischetti,
+// P. Toth, "A heuristic method for the set covering problem" (Operations Research 47, 1999).
+//
+// Relaxing each element's covering constraint (some coverer chosen) with a multiplier u_i >= 0 leaves
+//   L(u) = sum of u_i + sum over candidates of min(0, c_j),   c_j = 1 - sum of u_i over the elements j covers,
+// a lower bound on the size of every cover for every u >= 0. Subgradient optimisation raises it towards the bound of
+// the linear relaxation: with x_j = 1 where c_j < 0, g_i = 1 - (chosen candidates covering i) is a subgradient. The
+// reduced costs c_j bound further: a cover with candidate j has at least L + c_j candidates when c_j >= 0, a cover
+// without it at least L - c_j when c_j < 0.
+#include <algorithm>
+#include <cmath>
+
+#include "minimum_cover_internal.h"
+
+namespace art2part::cover {
+
+LagrangianBound::LagrangianBound(const CoreProblem& core)
+    : core_(core),
+      cw_(core.coverers.wordsPerRow()),
+      cost_(core.candidates, 0.0),
+      best_cost_(core.candidates, 0.0),
+      subgradient_(core.elements, 0.0),
+      best_u_(core.elements, 0.0),
+      chosen_(cw_, 0) {}
+
+// L(u) over the subproblem: cover U with candidates of A. Fills cost_ (for A) and chosen_ (c_j < 0).
+double LagrangianBound::evaluate(const Word* U, const Word* A, const double* u) {
+  forEachBit(A, cw_, [&](int j) { cost_[j] = 1.0; });
+  double bound = 0;
+  forEachBit(U, wordsFor(core_.elements), [&](int i) {
+    const double ui = u[i];
+    if (ui <= 0) return;
+    bound += ui;
+    const Word* row = core_.coverers.row(i);
+    for (int w = 0; w < cw_; ++w)
+      for (Word bits = row[w] & A[w]; bits; bits &= bits - 1) cost_[w * 64 + __builtin_ctzll(bits)] -= ui;
+  });
+  std::fill(chosen_.begin(), chosen_.end(), 0);
+  forEachBit(A, cw_, [&](int j) {
+    if (cost_[j] < 0) {
+      bound += cost_[j];
+      setBit(chosen_.data(), j);
+    }
+  });
+  return bound;
+}
+
+// The projected subgradient at the last evaluation into subgradient_ (on U); returns its squared norm.
+double LagrangianBound::computeSubgradient(const Word* U, const double* u) {
+  double norm = 0;
+  forEachBit(U, wordsFor(core_.elements), [&](int i) {
+    double g = 1.0 - popcountAnd(core_.coverers.row(i), chosen_.data(), cw_);
+    if (g < 0 && u[i] <= 0) g = 0;  // u_i stays at 0: no move along it
+    subgradient_[i] = g;
+    norm += g * g;
+  });
+  return norm;
+}
+
+double LagrangianBound::optimise(const Word* U, const Word* A, double* u, const SubgradientPlan& plan) {
+  const int ew = wordsFor(core_.elements);
+  double best = -1.0, factor = plan.step;
+  // The step factor adapts as Caprara, Fischetti and Toth's does: over each window of evaluations, halved when the
+  // bound swings by more than 1 %, raised by half when it moves by less than 0.1 %.
+  double window_low = 0, window_high = 0;
+  for (int iteration = 0;; ++iteration) {
+    const double bound = evaluate(U, A, u);
+    if (bound > best + 1e-9) {
+      best = bound;
+      forEachBit(U, ew, [&](int i) { best_u_[i] = u[i]; });
+      forEachBit(A, cw_, [&](int j) { best_cost_[j] = cost_[j]; });
+    }
+    if (best > plan.goal || iteration + 1 >= plan.iterations) break;
+    const int in_window = iteration % plan.window;
+    window_low = in_window == 0 ? bound : std::min(window_low, bound);
+    window_high = in_window == 0 ? bound : std::max(window_high, bound);
+    if (in_window == plan.window - 1) {
+      const double swing = (window_high - window_low) / std::max(1.0, std::abs(window_high));
+      if (swing > 0.01) factor *= 0.5;
+      else if (swing < 0.001) factor *= 1.5;
+      if (factor < plan.least_step) break;
+    }
+    const double norm = computeSubgradient(U, u);
+    if (norm <= 0) break;  // x(u) covers every element, exactly where u_i > 0: u is optimal
+    const double step = factor * std::max(plan.upper - bound, 1e-3) / norm;
+    forEachBit(U, ew, [&](int i) { u[i] = std::max(0.0, u[i] + step * subgradient_[i]); });
+  }
+  forEachBit(U, ew, [&](int i) { u[i] = best_u_[i]; });
+  last_step_ = factor;
+  return best;
+}
+
+namespace {
+
+// Drops candidates whose elements of U all have another chosen coverer, largest reduced cost first.
+void dropRedundant(const CoreProblem& core, const Word* U, const std::vector<double>& cost, std::vector<int>& chosen) {
+  const int ew = core.covers.wordsPerRow();
+  std::vector<int> count(core.elements, 0);
+  for (int j : chosen) {
+    const Word* row = core.covers.row(j);
+    for (int w = 0; w < ew; ++w)
+      for (Word bits = row[w] & U[w]; bits; bits &= bits - 1) ++count[w * 64 + __builtin_ctzll(bits)];
+  }
+  std::vector<int> order = chosen;
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return cost[a] != cost[b] ? cost[a] > cost[b] : a > b; });
+  for (int j : order) {
+    const Word* row = core.covers.row(j);
+    bool redundant = true;
+    for (int w = 0; w < ew && redundant; ++w)
+      for (Word bits = row[w] & U[w]; bits && redundant; bits &= bits - 1)
+        redundant = count[w * 64 + __builtin_ctzll(bits)] > 1;
+    if (!redundant) continue;
+    for (int w = 0; w < ew; ++w)
+      for (Word bits = row[w] & U[w]; bits; bits &= bits - 1) --count[w * 64 + __builtin_ctzll(bits)];
+    chosen.erase(std::find(chosen.begin(), chosen.end(), j));
+  }
+}
+
+}  // namespace
+
+std::vector<int> LagrangianBound::greedyCover(const Word* U, const Word* A, int limit) const {
+  const int ew = core_.covers.wordsPerRow();
+  std::vector<Word> left(U, U + ew);
+  std::vector<int> chosen;
+  while (!isZero(left.data(), ew)) {
+    // Caprara-Fischetti-Toth score: c_j / mu_j when c_j > 0, c_j * mu_j otherwise (mu_j: newly covered elements).
+    int pick = -1;
+    double pick_score = 0;
+    forEachBit(A, cw_, [&](int j) {
+      const int mu = popcountAnd(core_.covers.row(j), left.data(), ew);
+      if (mu == 0) return;
+      const double c = best_cost_[j];
+      const double score = c > 0 ? c / mu : c * mu;
+      if (pick < 0 || score < pick_score) pick = j, pick_score = score;
+    });
+    if (pick < 0) return {};  // A cannot cover U
+    chosen.push_back(pick);
+    const Word* row = core_.covers.row(pick);
+    for (int w = 0; w < ew; ++w) left[w] &= ~row[w];
+  }
+  dropRedundant(core_, U, best_cost_, chosen);
+  if (static_cast<int>(chosen.size()) > limit) return {};
+  return chosen;
+}
+
+void dualStart(const CoreProblem& core, const Word* U, const Word* A, double* u) {
+  // u_i = 1 / (most elements of U any allowed coverer of i covers): no reduced cost below 0, L(u) = sum u_i.
+  const int cw = core.coverers.wordsPerRow(), ew = core.covers.wordsPerRow();
+  std::vector<int> size(core.candidates, 0);
+  forEachBit(A, cw, [&](int j) { size[j] = popcountAnd(core.covers.row(j), U, ew); });
+  forEachBit(U, ew, [&](int i) {
+    int most = 1;
+    const Word* row = core.coverers.row(i);
+    for (int w = 0; w < cw; ++w)
+      for (Word bits = row[w] & A[w]; bits; bits &= bits - 1) most = std::max(most, size[w * 64 + __builtin_ctzll(bits)]);
+    u[i] = 1.0 / most;
+  });
+}
+
+}  // namespace art2part::cover
