@@ -62,26 +62,23 @@ double LagrangianBound::computeSubgradient(const Word* U, const double* u) {
 double LagrangianBound::optimise(const Word* U, const Word* A, double* u, const SubgradientPlan& plan) {
   const int ew = wordsFor(core_.elements);
   double best = -1.0, factor = plan.step;
-  // The step factor adapts as Caprara, Fischetti and Toth's does: over each window of evaluations, halved when the
-  // bound swings by more than 1 %, raised by half when it moves by less than 0.1 %.
-  double window_low = 0, window_high = 0;
+  // Beasley's step rule: the factor is halved whenever the best bound has not risen for a window of evaluations.
+  // (Caprara, Fischetti and Toth's rule, which halves it when the bound swings by more than 1 % over a window,
+  // halved it on every window here from the start: at factor 0.006 the bound crept up by 0.1 per 50 steps.)
+  int stalled = 0;
   for (int iteration = 0;; ++iteration) {
     const double bound = evaluate(U, A, u);
-    if (bound > best + 1e-9) {
+    if (bound > best + 1e-6) {
       best = bound;
+      stalled = 0;
       forEachBit(U, ew, [&](int i) { best_u_[i] = u[i]; });
       forEachBit(A, cw_, [&](int j) { best_cost_[j] = cost_[j]; });
-    }
-    if (best > plan.goal || iteration + 1 >= plan.iterations) break;
-    const int in_window = iteration % plan.window;
-    window_low = in_window == 0 ? bound : std::min(window_low, bound);
-    window_high = in_window == 0 ? bound : std::max(window_high, bound);
-    if (in_window == plan.window - 1) {
-      const double swing = (window_high - window_low) / std::max(1.0, std::abs(window_high));
-      if (swing > 0.01) factor *= 0.5;
-      else if (swing < 0.001) factor *= 1.5;
+    } else if (++stalled >= plan.window) {
+      factor *= 0.5;
+      stalled = 0;
       if (factor < plan.least_step) break;
     }
+    if (best > plan.goal || iteration + 1 >= plan.iterations) break;
     const double norm = computeSubgradient(U, u);
     if (norm <= 0) break;  // x(u) covers every element, exactly where u_i > 0: u is optimal
     const double step = factor * std::max(plan.upper - bound, 1e-3) / norm;

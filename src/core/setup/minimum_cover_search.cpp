@@ -12,7 +12,6 @@
 #include <algorithm>
 #include <chrono>
 #include <climits>
-#include <cstdio>
 #include <cmath>
 #include <functional>
 
@@ -53,6 +52,7 @@ class BranchAndBound {
     relevant_.assign(cw_, 0);
     items_.assign(bw_, 0);
     restricted_.assign(cw_, 0);
+    found_.assign(cw_, 0);
     if (use_bonus_) {
       item_earners_ = core.earns.transposed();
       items_by_weight_.resize(core.bonus_items);
@@ -75,17 +75,17 @@ class BranchAndBound {
     earned_.assign(static_cast<std::size_t>(depths) * bw_, 0);
     branches_.resize(depths);
     packings_.assign(depths, {});
+    relaxed_.assign(depths, 0);
     for (int e = 0; e < core_.elements; ++e) setBit(uncovered(0), e);
     for (int c = 0; c < core_.candidates; ++c) setBit(allowed(0), c);
     if (lagrangian_) {
       multipliers_.assign(static_cast<std::size_t>(depths) * core_.elements, 0.0);
       narrowed_.assign(static_cast<std::size_t>(depths) * cw_, 0);
-      rootBound();
+      long long nonzeros = 0;
+      for (int e = 0; e < core_.elements; ++e) nonzeros += popcount(core_.coverers.row(e), cw_);
+      if (nonzeros <= kLagrangianNonzeros) rootBound();
     }
     search(0, 0.0);
-#ifdef MC_DEBUG
-    for (int d = 0; d < 12; ++d) if (dbg_nodes_[d]) std::fprintf(stderr, "depth %d nodes %ld pruned %ld bound %.3f allowed %.1f branches %.1f\n", d, dbg_nodes_[d], dbg_pruned_[d], dbg_bound_[d] / dbg_nodes_[d], dbg_allowed_[d] / double(dbg_nodes_[d] - dbg_pruned_[d] + 1e-9), dbg_branch_[d] / double(dbg_nodes_[d] - dbg_pruned_[d] + 1e-9));
-#endif
     CoreSolution out;
     out.chosen = best_;
     std::sort(out.chosen.begin(), out.chosen.end());
@@ -371,6 +371,10 @@ class BranchAndBound {
     }
     int slots = best_size_ - depth;  // candidates that may still be added without a worse size
     if (slots <= 0) return;
+    if (!use_bonus_ && slots <= 3) {  // a smaller cover adds at most two: decided directly, without bounds
+      finishWithFew(depth, U, A, slots - 1);
+      return;
+    }
     std::vector<int>& packed = packings_[depth];
 
     // A packing that fills every slot, inherited from a tight parent, keeps the node tight: skip the bounds.
@@ -394,7 +398,8 @@ class BranchAndBound {
       if (!betterBonus(bonus + bonusBound(slots, A, E, packed), best_bonus_)) return;
     }
     LagrangianNode relaxed;
-    if (lagrangian_) {
+    relaxed_[depth] = lagrangian_ && node_nonzeros_ <= kLagrangianNonzeros;
+    if (relaxed_[depth]) {
       if (!lagrangianNode(depth, U, A, relaxed)) return;
       A = narrowed(depth);
       branch_element = relaxed.branch_element;
@@ -406,7 +411,7 @@ class BranchAndBound {
     auto addBranch = [&](int c) {
       branches.push_back({c, popcountAnd(core_.covers.row(c), U, ew_),
                           use_bonus_ ? freshBonus(core_, core_.earns.row(c), E) : 0.0, false,
-                          lagrangian_ ? lagrange_.reducedCost(c) : 0.0});
+                          relaxed_[depth] ? lagrange_.reducedCost(c) : 0.0});
     };
     if (relaxed.must_take >= 0)
       addBranch(relaxed.must_take);  // every better cover below takes it: the only branch
@@ -461,8 +466,59 @@ class BranchAndBound {
       if (timed_out_) return;
       if (lower > best_size_ - depth) return;  // the incumbent improved past what this node can offer
       if (lower == best_size_ - depth && !use_bonus_) return;
-      if (lagrangian_ && relaxed.bound > best_size_ - 1 - depth + kBoundTolerance) return;
+      if (relaxed_[depth] && relaxed.bound > best_size_ - 1 - depth + kBoundTolerance) return;
     }
+  }
+
+  // ---- the size search's last steps ----
+
+  // The allowed candidates covering every element of U into found_; false when there is none. Intersecting the
+  // elements' coverer sets stops at the first empty intersection, which comes after a few elements in most nodes.
+  bool coveringAll(const Word* U, const Word* A) {
+    std::copy(A, A + cw_, found_.begin());
+    bool any = true;
+    for (int w = 0; w < ew_ && any; ++w)
+      for (Word bits = U[w]; bits && any; bits &= bits - 1) {
+        const Word* row = core_.coverers.row(w * 64 + __builtin_ctzll(bits));
+        any = false;
+        for (int x = 0; x < cw_; ++x) any = (found_[x] &= row[x]) != 0 || any;
+      }
+    return any;
+  }
+
+  int firstBit(const Word* a, int words) {
+    for (int w = 0; w < words; ++w)
+      if (a[w]) return w * 64 + __builtin_ctzll(a[w]);
+    return -1;
+  }
+
+  // A cover of U by at most `room` (0 to 2) more candidates of A, recorded when there is one. Exact: with two, one
+  // of them covers the element with the fewest allowed coverers and the other the rest. The size search spends most
+  // of its nodes here, and this costs a few passes over the coverer sets where the bounds would cost several.
+  void finishWithFew(int depth, const Word* U, const Word* A, int room) {
+    if (room <= 0) return;
+    if (coveringAll(U, A)) {
+      stack_.push_back(firstBit(found_.data(), cw_));
+      record(depth + 1, 0.0);
+      stack_.pop_back();
+      return;
+    }
+    if (room == 1) return;
+    const int element = fewestCoverers(U, A);
+    Word* rest = uncovered(depth + 1);
+    const Word* row = core_.coverers.row(element);
+    for (int w = 0; w < cw_; ++w)
+      for (Word bits = row[w] & A[w]; bits; bits &= bits - 1) {
+        const int c = w * 64 + __builtin_ctzll(bits);
+        const Word* covers = core_.covers.row(c);
+        for (int x = 0; x < ew_; ++x) rest[x] = U[x] & ~covers[x];
+        if (!coveringAll(rest, A)) continue;
+        stack_.push_back(c);
+        stack_.push_back(firstBit(found_.data(), cw_));
+        record(depth + 2, 0.0);
+        stack_.resize(depth);
+        return;
+      }
   }
 
   // ---- the Lagrangian stage of the size search ----
@@ -474,7 +530,7 @@ class BranchAndBound {
     const Word* A = allowed(0);
     double* u = multipliers(0);
     dualStart(core_, U, A, u);
-    double factor = 0.1;
+    double factor = kRootStep;
     for (int round = 0; round < kRootRounds && !pastDeadline(); ++round) {
       SubgradientPlan plan;
       plan.iterations = kRootRoundIterations;
@@ -485,9 +541,6 @@ class BranchAndBound {
       plan.upper = best_size_;
       const double bound = lagrange_.optimise(U, A, u, plan);
       factor = lagrange_.lastStep();
-#ifdef MC_DEBUG
-      std::fprintf(stderr, "round %d bound %.4f factor %.4f\n", round, bound, factor);
-#endif
       tryHeuristic(0, U, A);
       if (bound > best_size_ - 1 + kBoundTolerance || factor < kRootLeastStep) break;
     }
@@ -507,9 +560,11 @@ class BranchAndBound {
   // must-take when every cover without one is. False when no better cover lies below.
   bool lagrangianNode(int depth, const Word* U, const Word* A, LagrangianNode& out) {
     double* u = multipliers(depth);
-    if (depth > 0) {
+    if (depth > 0 && relaxed_[depth - 1]) {
       const double* parent = multipliers(depth - 1);
       forEachBit(U, ew_, [&](int i) { u[i] = parent[i]; });
+    } else if (depth > 0) {
+      dualStart(core_, U, A, u);
     }
     SubgradientPlan plan;
     plan.iterations = kNodeIterations;
@@ -519,10 +574,6 @@ class BranchAndBound {
     plan.goal = best_size_ - 1 - depth + kBoundTolerance;
     plan.upper = best_size_ - depth;
     out.bound = lagrange_.optimise(U, A, u, plan);
-#ifdef MC_DEBUG
-    if (depth < 12) { dbg_nodes_[depth]++; dbg_bound_[depth] += out.bound; if (out.bound > best_size_ - 1 - depth + kBoundTolerance) dbg_pruned_[depth]++; }
-    if (depth == 0) std::fprintf(stderr, "root bound %.4f incumbent %d\n", out.bound, best_size_);
-#endif
     if (out.bound > best_size_ - 1 - depth + kBoundTolerance) return false;
     tryHeuristic(depth, U, A);
     const double room = best_size_ - 1 - depth - out.bound + kBoundTolerance;  // what a reduced cost may add
@@ -536,9 +587,6 @@ class BranchAndBound {
       else if (-cost > room && out.must_take < 0) out.must_take = j;
     });
     out.branch_element = fewestCoverers(U, N);
-#ifdef MC_DEBUG
-    if (depth < 12) { dbg_allowed_[depth] += popcount(N, cw_); dbg_branch_[depth] += out.must_take >= 0 ? 1 : popcountAnd(core_.coverers.row(out.branch_element), N, cw_); }
-#endif
     return out.branch_element >= 0 && popcountAnd(core_.coverers.row(out.branch_element), N, cw_) > 0;
   }
 
@@ -549,10 +597,12 @@ class BranchAndBound {
     int branch_element = -1, fewest = INT_MAX;
     std::fill(relevant_.begin(), relevant_.end(), 0);
     bool dead_end = false;
+    node_nonzeros_ = 0;
     forEachBit(U, ew_, [&](int e) {
       if (dead_end) return;
       const Word* row = core_.coverers.row(e);
       const int count = popcountAnd(row, A, cw_);
+      node_nonzeros_ += count;
       if (count == 0) dead_end = true;
       if (count < fewest) {
         fewest = count;
@@ -583,8 +633,13 @@ class BranchAndBound {
 
   // The subgradient optimisation: at the root in rounds (each then the heuristic), at the other nodes a few steps
   // from the parent's multipliers.
-  static constexpr int kRootRounds = 40, kRootRoundIterations = 50, kRootWindow = 20;
-  static constexpr double kRootLeastStep = 0.002;
+  static constexpr int kRootRounds = 40, kRootRoundIterations = 100, kRootWindow = 50;
+  static constexpr double kRootStep = 1.0, kRootLeastStep = 0.002;
+  // A subgradient step costs a pass over the node's matrix. On dense cores (a blade's: 1.1 million nonzeros, 4899
+  // elements of some 200 coverers each) a few dozen steps cost more than thousands of combinatorial nodes, and the
+  // bound stays far below the optimum anyway (linear relaxation 4.5 for 6 there): the relaxation runs at a node only
+  // when its matrix has at most this many nonzeros.
+  static constexpr long long kLagrangianNonzeros = 200000;
   static constexpr int kNodeIterations = 15, kNodeWindow = 5;
   static constexpr double kNodeStep = 0.2;
 
@@ -595,10 +650,8 @@ class BranchAndBound {
   LagrangianBound lagrange_;
   std::vector<double> multipliers_;  // per depth, one per core element
   std::vector<Word> narrowed_;       // per depth: the allowed candidates after reduced-cost fixing
-#ifdef MC_DEBUG
-  long dbg_nodes_[12] = {}, dbg_pruned_[12] = {};
-  double dbg_bound_[12] = {}, dbg_allowed_[12] = {}, dbg_branch_[12] = {};
-#endif
+  std::vector<char> relaxed_;        // per depth: the node ran the Lagrangian stage (its multipliers are current)
+  long long node_nonzeros_ = 0;      // of the last boundNode: coverer bits of U's elements within A
   bool has_deadline_ = false, timed_out_ = false, improved_ = false, size_is_minimal_ = false;
   std::chrono::steady_clock::time_point deadline_;
   long long nodes_ = 0;
@@ -614,7 +667,7 @@ class BranchAndBound {
   std::vector<int> items_by_weight_, set_of_, touched_;
   std::vector<double> alpha_of_, set_best_, set_raise_;
   std::vector<double> marginal_, top_, slack_;
-  std::vector<Word> used_, relevant_, items_, effective_, restricted_, choices_;
+  std::vector<Word> used_, relevant_, items_, effective_, restricted_, choices_, found_;
 
   std::vector<int> best_;
   int best_size_ = 0;
