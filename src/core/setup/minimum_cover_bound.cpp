@@ -9,6 +9,8 @@
 // the linear relaxation: with x_j = 1 where c_j < 0, g_i = 1 - (chosen candidates covering i) is a subgradient. The
 // reduced costs c_j bound further: a cover with candidate j has at least L + c_j candidates when c_j >= 0, a cover
 // without it at least L - c_j when c_j < 0.
+//
+// Also here: the exact end of the size search, a cover by at most two candidates (smallCover).
 #include <algorithm>
 #include <cmath>
 
@@ -140,6 +142,93 @@ std::vector<int> LagrangianBound::greedyCover(const Word* U, const Word* A, int 
   dropRedundant(core_, U, best_cost_, chosen);
   if (static_cast<int>(chosen.size()) > limit) return {};
   return chosen;
+}
+
+double LagrangianBound::optimiseRoot(const Word* U, const Word* A, double* u, int incumbent,
+                                     const std::function<bool()>& past_deadline, std::vector<int>& cover) {
+  // Beasley's start (factor 1, halved after 50 steps without progress), in rounds of 100 steps.
+  constexpr int kRounds = 40;
+  constexpr double kLeastStep = 0.002, kTolerance = 1e-6;
+  dualStart(core_, U, A, u);
+  cover.clear();
+  SubgradientPlan plan;
+  plan.iterations = 100;
+  plan.step = 1.0;
+  plan.least_step = kLeastStep;
+  plan.window = 50;
+  double bound = 0;
+  for (int round = 0; round < kRounds && !past_deadline(); ++round) {
+    plan.goal = incumbent - 1 + kTolerance;
+    plan.upper = incumbent;
+    bound = optimise(U, A, u, plan);
+    plan.step = lastStep();
+    std::vector<int> found = greedyCover(U, A, incumbent - 1);
+    if (!found.empty()) {
+      incumbent = static_cast<int>(found.size());
+      cover.swap(found);
+    }
+    if (bound > incumbent - 1 + kTolerance || plan.step < kLeastStep) break;
+  }
+  return bound;
+}
+
+int LagrangianBound::fixByReducedCost(const Word* A, double room, Word* narrowed) const {
+  std::copy(A, A + cw_, narrowed);
+  int must_take = -1;
+  forEachBit(A, cw_, [&](int j) {
+    const double cost = best_cost_[j];
+    if (cost > room) clearBit(narrowed, j);
+    else if (-cost > room && must_take < 0) must_take = j;
+  });
+  return must_take;
+}
+
+namespace {
+
+// The allowed candidates covering every element of U into `found`; false when there is none. The intersection of
+// the elements' coverer sets is empty after a few elements in most nodes.
+bool coveringAll(const CoreProblem& core, const Word* U, const Word* A, std::vector<Word>& found) {
+  const int cw = core.coverers.wordsPerRow(), ew = core.covers.wordsPerRow();
+  found.assign(A, A + cw);
+  bool any = true;
+  for (int w = 0; w < ew && any; ++w)
+    for (Word bits = U[w]; bits && any; bits &= bits - 1) {
+      const Word* row = core.coverers.row(w * 64 + __builtin_ctzll(bits));
+      any = false;
+      for (int x = 0; x < cw; ++x) any = (found[x] &= row[x]) != 0 || any;
+    }
+  return any;
+}
+
+int firstBit(const std::vector<Word>& a) {
+  for (std::size_t w = 0; w < a.size(); ++w)
+    if (a[w]) return static_cast<int>(w) * 64 + __builtin_ctzll(a[w]);
+  return -1;
+}
+
+}  // namespace
+
+std::vector<int> smallCover(const CoreProblem& core, const Word* U, const Word* A, int room) {
+  if (room <= 0) return {};
+  const int cw = core.coverers.wordsPerRow(), ew = core.covers.wordsPerRow();
+  std::vector<Word> found;
+  if (coveringAll(core, U, A, found)) return {firstBit(found)};
+  if (room == 1) return {};
+  int element = -1, fewest = 0;
+  forEachBit(U, ew, [&](int e) {
+    const int count = popcountAnd(core.coverers.row(e), A, cw);
+    if (element < 0 || count < fewest) element = e, fewest = count;
+  });
+  std::vector<Word> rest(ew);
+  const Word* row = core.coverers.row(element);
+  for (int w = 0; w < cw; ++w)
+    for (Word bits = row[w] & A[w]; bits; bits &= bits - 1) {
+      const int c = w * 64 + __builtin_ctzll(bits);
+      const Word* covers = core.covers.row(c);
+      for (int x = 0; x < ew; ++x) rest[x] = U[x] & ~covers[x];
+      if (coveringAll(core, rest.data(), A, found)) return {c, firstBit(found)};
+    }
+  return {};
 }
 
 void dualStart(const CoreProblem& core, const Word* U, const Word* A, double* u) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "art2part/setup/minimum_cover.h"
@@ -127,7 +128,7 @@ struct SubgradientPlan {
   int iterations = 0;       // evaluations at most
   double step = 1.0;        // the Polyak step factor at the start
   double least_step = 0.0;  // stop when the factor, halved, falls below it
-  int window = 20;          // evaluations between adjustments of the factor
+  int window = 20;          // evaluations without a better bound before the factor is halved
   double goal = 0;          // stop once the bound exceeds it (the node can go)
   double upper = 0;         // the size the step aims at (the incumbent's)
 };
@@ -144,6 +145,14 @@ class LagrangianBound {
   // A cover of U by candidates of A, guided by the reduced costs of the last optimise; empty when it needs more than
   // `limit` candidates or A cannot cover U.
   std::vector<int> greedyCover(const Word* U, const Word* A, int limit) const;
+  // Reduced-cost fixing after the last optimise, for covers at most `room` above its bound: into `narrowed` the
+  // candidates of A a cover with them may hold (reduced cost <= room); returns one every such cover holds (-1: none).
+  int fixByReducedCost(const Word* A, double room, Word* narrowed) const;
+  // The root: from a dual solution, rounds of subgradient optimisation, each followed by the greedy cover, until the
+  // bound shows that no cover is smaller than `incumbent` candidates, the step factor runs out or past_deadline().
+  // `cover` receives the smallest cover found below `incumbent` (empty: none). Returns the bound.
+  double optimiseRoot(const Word* U, const Word* A, double* u, int incumbent,
+                      const std::function<bool()>& past_deadline, std::vector<int>& cover);
 
  private:
   double evaluate(const Word* U, const Word* A, const double* u);
@@ -156,6 +165,11 @@ class LagrangianBound {
   std::vector<Word> chosen_;  // candidates with negative reduced cost
   double last_step_ = 0;
 };
+
+// A cover of U by at most `room` (up to 2) candidates of A, a single one when one suffices; empty when there is none.
+// Exact: of two, one covers the element with the fewest allowed coverers and the other the rest. The size search
+// ends here when a smaller cover may add only two candidates more, where most of its nodes lie.
+std::vector<int> smallCover(const CoreProblem& core, const Word* U, const Word* A, int room);
 
 // Multipliers with no negative reduced cost, where the bound is their sum: u_i = 1 / (most elements of U that an
 // allowed coverer of i covers). The start of the root's subgradient optimisation.

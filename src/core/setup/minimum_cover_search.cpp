@@ -4,11 +4,12 @@
 // Depth first, branching on the uncovered element with the fewest allowed coverers; later branches of a node exclude
 // the candidates of the earlier ones, so the subtrees partition the covers, and a branch dominated by an earlier one
 // (covers no more, earns no more) is skipped. The size bound is the larger of a greedy packing (uncovered elements
-// with pairwise disjoint coverer sets) and a dual solution of the covering LP. The bonus bound counts the most the
-// remaining slots can earn. A node is tight when its packing fills every slot: then each slot takes a candidate of
-// its own packed element, which narrows the candidates (and propagates through elements that only one packed
-// element's candidates cover), gives a stronger bonus bound (the LP dual over the packed elements' choice sets), and
-// passes on to the children, which skip their own bounds.
+// with pairwise disjoint coverer sets) and a dual solution of the covering LP; the size search adds the Lagrangian
+// bound with reduced-cost fixing and its greedy heuristic (minimum_cover_bound.cpp), and decides the last two
+// candidates exactly. The bonus bound counts the most the remaining slots can earn. A node is tight when its packing
+// fills every slot: then each slot takes a candidate of its own packed element, which narrows the candidates (and
+// propagates through elements that only one packed element's candidates cover), gives a stronger bonus bound (the LP
+// dual over the packed elements' choice sets), and passes on to the children, which skip their own bounds.
 #include <algorithm>
 #include <chrono>
 #include <climits>
@@ -52,7 +53,6 @@ class BranchAndBound {
     relevant_.assign(cw_, 0);
     items_.assign(bw_, 0);
     restricted_.assign(cw_, 0);
-    found_.assign(cw_, 0);
     if (use_bonus_) {
       item_earners_ = core.earns.transposed();
       items_by_weight_.resize(core.bonus_items);
@@ -83,7 +83,11 @@ class BranchAndBound {
       narrowed_.assign(static_cast<std::size_t>(depths) * cw_, 0);
       long long nonzeros = 0;
       for (int e = 0; e < core_.elements; ++e) nonzeros += popcount(core_.coverers.row(e), cw_);
-      if (nonzeros <= kLagrangianNonzeros) rootBound();
+      std::vector<int> cover;  // the root's bound, long optimised, and the better incumbent its heuristic finds
+      if (nonzeros <= kLagrangianNonzeros)
+        lagrange_.optimiseRoot(uncovered(0), allowed(0), multipliers(0), best_size_, [this] { return pastDeadline(); },
+                               cover);
+      recordExtension(0, cover);
     }
     search(0, 0.0);
     CoreSolution out;
@@ -372,7 +376,7 @@ class BranchAndBound {
     int slots = best_size_ - depth;  // candidates that may still be added without a worse size
     if (slots <= 0) return;
     if (!use_bonus_ && slots <= 3) {  // a smaller cover adds at most two: decided directly, without bounds
-      finishWithFew(depth, U, A, slots - 1);
+      recordExtension(depth, smallCover(core_, U, A, slots - 1));
       return;
     }
     std::vector<int>& packed = packings_[depth];
@@ -470,90 +474,15 @@ class BranchAndBound {
     }
   }
 
-  // ---- the size search's last steps ----
-
-  // The allowed candidates covering every element of U into found_; false when there is none. Intersecting the
-  // elements' coverer sets stops at the first empty intersection, which comes after a few elements in most nodes.
-  bool coveringAll(const Word* U, const Word* A) {
-    std::copy(A, A + cw_, found_.begin());
-    bool any = true;
-    for (int w = 0; w < ew_ && any; ++w)
-      for (Word bits = U[w]; bits && any; bits &= bits - 1) {
-        const Word* row = core_.coverers.row(w * 64 + __builtin_ctzll(bits));
-        any = false;
-        for (int x = 0; x < cw_; ++x) any = (found_[x] &= row[x]) != 0 || any;
-      }
-    return any;
-  }
-
-  int firstBit(const Word* a, int words) {
-    for (int w = 0; w < words; ++w)
-      if (a[w]) return w * 64 + __builtin_ctzll(a[w]);
-    return -1;
-  }
-
-  // A cover of U by at most `room` (0 to 2) more candidates of A, recorded when there is one. Exact: with two, one
-  // of them covers the element with the fewest allowed coverers and the other the rest. The size search spends most
-  // of its nodes here, and this costs a few passes over the coverer sets where the bounds would cost several.
-  void finishWithFew(int depth, const Word* U, const Word* A, int room) {
-    if (room <= 0) return;
-    if (coveringAll(U, A)) {
-      stack_.push_back(firstBit(found_.data(), cw_));
-      record(depth + 1, 0.0);
-      stack_.pop_back();
-      return;
-    }
-    if (room == 1) return;
-    const int element = fewestCoverers(U, A);
-    Word* rest = uncovered(depth + 1);
-    const Word* row = core_.coverers.row(element);
-    for (int w = 0; w < cw_; ++w)
-      for (Word bits = row[w] & A[w]; bits; bits &= bits - 1) {
-        const int c = w * 64 + __builtin_ctzll(bits);
-        const Word* covers = core_.covers.row(c);
-        for (int x = 0; x < ew_; ++x) rest[x] = U[x] & ~covers[x];
-        if (!coveringAll(rest, A)) continue;
-        stack_.push_back(c);
-        stack_.push_back(firstBit(found_.data(), cw_));
-        record(depth + 2, 0.0);
-        stack_.resize(depth);
-        return;
-      }
-  }
-
-  // ---- the Lagrangian stage of the size search ----
-
-  // Before the search: the root's multipliers from a dual solution, then a long subgradient optimisation in rounds,
-  // each followed by the Lagrangian greedy heuristic (a better incumbent prunes more from the start).
-  void rootBound() {
-    const Word* U = uncovered(0);
-    const Word* A = allowed(0);
-    double* u = multipliers(0);
-    dualStart(core_, U, A, u);
-    double factor = kRootStep;
-    for (int round = 0; round < kRootRounds && !pastDeadline(); ++round) {
-      SubgradientPlan plan;
-      plan.iterations = kRootRoundIterations;
-      plan.step = factor;
-      plan.least_step = kRootLeastStep;
-      plan.window = kRootWindow;
-      plan.goal = best_size_ - 1 + kBoundTolerance;
-      plan.upper = best_size_;
-      const double bound = lagrange_.optimise(U, A, u, plan);
-      factor = lagrange_.lastStep();
-      tryHeuristic(0, U, A);
-      if (bound > best_size_ - 1 + kBoundTolerance || factor < kRootLeastStep) break;
-    }
-  }
-
-  // The Lagrangian greedy cover of the node's subproblem, recorded when it makes a better cover with the stack.
-  void tryHeuristic(int depth, const Word* U, const Word* A) {
-    const std::vector<int> cover = lagrange_.greedyCover(U, A, best_size_ - 1 - depth);
+  // `cover` (of the node's U) after the chosen stack, recorded when that is better.
+  void recordExtension(int depth, const std::vector<int>& cover) {
     if (cover.empty()) return;
     stack_.insert(stack_.end(), cover.begin(), cover.end());
     record(depth + static_cast<int>(cover.size()), 0.0);
     stack_.resize(depth);
   }
+
+  // ---- the Lagrangian stage of the size search ----
 
   // The node's Lagrangian bound, warm started from the parent's multipliers; the heuristic; then the allowed
   // candidates narrowed by reduced cost into narrowed(depth): out when every cover taking one is too large, and a
@@ -575,17 +504,11 @@ class BranchAndBound {
     plan.upper = best_size_ - depth;
     out.bound = lagrange_.optimise(U, A, u, plan);
     if (out.bound > best_size_ - 1 - depth + kBoundTolerance) return false;
-    tryHeuristic(depth, U, A);
+    recordExtension(depth, lagrange_.greedyCover(U, A, best_size_ - 1 - depth));
     const double room = best_size_ - 1 - depth - out.bound + kBoundTolerance;  // what a reduced cost may add
     if (room < 0) return false;
     Word* N = narrowed(depth);
-    std::copy(A, A + cw_, N);
-    out.must_take = -1;
-    forEachBit(A, cw_, [&](int j) {
-      const double cost = lagrange_.reducedCost(j);
-      if (cost > room) clearBit(N, j);
-      else if (-cost > room && out.must_take < 0) out.must_take = j;
-    });
+    out.must_take = lagrange_.fixByReducedCost(A, room, N);
     out.branch_element = fewestCoverers(U, N);
     return out.branch_element >= 0 && popcountAnd(core_.coverers.row(out.branch_element), N, cw_) > 0;
   }
@@ -615,7 +538,10 @@ class BranchAndBound {
     const Word* sized = effectiveCandidates(A);
     orderUncovered(U, sized);
     lower = packingBound(sized, slots, packed);
-    if (lower < slots) lower = std::max(lower, static_cast<int>(std::ceil(dualBound(sized) - 1e-9)));
+    // Three candidates before the exact finish, the dual bound (a pass over every coverer bit, 1.1 million on a
+    // blade's core) prunes seldom: skipping it there halved the size search on the blade.
+    if (lower < slots && (use_bonus_ || slots > 4))
+      lower = std::max(lower, static_cast<int>(std::ceil(dualBound(sized) - 1e-9)));
     return branch_element;
   }
 
@@ -631,15 +557,12 @@ class BranchAndBound {
     return element;
   }
 
-  // The subgradient optimisation: at the root in rounds (each then the heuristic), at the other nodes a few steps
-  // from the parent's multipliers.
-  static constexpr int kRootRounds = 40, kRootRoundIterations = 100, kRootWindow = 50;
-  static constexpr double kRootStep = 1.0, kRootLeastStep = 0.002;
   // A subgradient step costs a pass over the node's matrix. On dense cores (a blade's: 1.1 million nonzeros, 4899
   // elements of some 200 coverers each) a few dozen steps cost more than thousands of combinatorial nodes, and the
   // bound stays far below the optimum anyway (linear relaxation 4.5 for 6 there): the relaxation runs at a node only
   // when its matrix has at most this many nonzeros.
   static constexpr long long kLagrangianNonzeros = 200000;
+  // Below the root, a few subgradient steps from the parent's multipliers.
   static constexpr int kNodeIterations = 15, kNodeWindow = 5;
   static constexpr double kNodeStep = 0.2;
 
@@ -667,7 +590,7 @@ class BranchAndBound {
   std::vector<int> items_by_weight_, set_of_, touched_;
   std::vector<double> alpha_of_, set_best_, set_raise_;
   std::vector<double> marginal_, top_, slack_;
-  std::vector<Word> used_, relevant_, items_, effective_, restricted_, choices_, found_;
+  std::vector<Word> used_, relevant_, items_, effective_, restricted_, choices_;
 
   std::vector<int> best_;
   int best_size_ = 0;
