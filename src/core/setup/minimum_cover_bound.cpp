@@ -146,9 +146,12 @@ std::vector<int> LagrangianBound::greedyCover(const Word* U, const Word* A, int 
 
 double LagrangianBound::optimiseRoot(const Word* U, const Word* A, double* u, int incumbent,
                                      const std::function<bool()>& past_deadline, std::vector<int>& cover) {
-  // Beasley's start (factor 1, halved after 50 steps without progress), in rounds of 100 steps.
-  constexpr int kRounds = 40;
-  constexpr double kLeastStep = 0.002, kTolerance = 1e-6;
+  // Beasley's start (factor 1, halved after 50 steps without progress), in rounds of 100 steps. A step costs a pass
+  // over the nonzeros: some 1e8 of them in all at most (a tenth of a second), so 40 rounds on mount_rush's core.
+  constexpr double kLeastStep = 0.002, kTolerance = 1e-6, kWork = 1e8;
+  long long nonzeros = 0;
+  forEachBit(U, wordsFor(core_.elements), [&](int i) { nonzeros += popcountAnd(core_.coverers.row(i), A, cw_); });
+  const int rounds = static_cast<int>(std::clamp(kWork / (100.0 * std::max(1LL, nonzeros)), 1.0, 40.0));
   dualStart(core_, U, A, u);
   cover.clear();
   SubgradientPlan plan;
@@ -157,7 +160,7 @@ double LagrangianBound::optimiseRoot(const Word* U, const Word* A, double* u, in
   plan.least_step = kLeastStep;
   plan.window = 50;
   double bound = 0;
-  for (int round = 0; round < kRounds && !past_deadline(); ++round) {
+  for (int round = 0; round < rounds && !past_deadline(); ++round) {
     plan.goal = incumbent - 1 + kTolerance;
     plan.upper = incumbent;
     bound = optimise(U, A, u, plan);
