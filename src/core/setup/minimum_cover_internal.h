@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "art2part/setup/minimum_cover.h"
@@ -119,6 +120,60 @@ CoreSolution greedyCoreCover(const CoreProblem& core, bool use_bonus);
 // incumbent. time_limit_s: wall clock for the search (infinite: none); when it runs out the incumbent is returned
 // incomplete.
 CoreSolution branchAndBound(const CoreProblem& core, const SearchStart& start, bool use_bonus, double time_limit_s);
+
+// ---- the Lagrangian relaxation (minimum_cover_bound.cpp) -----------------------------------------------------------
+
+// How far one subgradient optimisation goes.
+struct SubgradientPlan {
+  int iterations = 0;       // evaluations at most
+  double step = 1.0;        // the Polyak step factor at the start
+  double least_step = 0.0;  // stop when the factor, halved, falls below it
+  int window = 20;          // evaluations without a better bound before the factor is halved
+  double goal = 0;          // stop once the bound exceeds it (the node can go)
+  double upper = 0;         // the size the step aims at (the incumbent's)
+};
+
+// The Lagrangian bound of the subproblem "cover the elements U with candidates of A": see minimum_cover_bound.cpp.
+class LagrangianBound {
+ public:
+  explicit LagrangianBound(const CoreProblem& core);
+  // Subgradient optimisation from the multipliers u (one per core element; only those of U are read and written),
+  // which end at the best found. Returns that bound; reducedCost then gives the reduced costs there, for A.
+  double optimise(const Word* U, const Word* A, double* u, const SubgradientPlan& plan);
+  double reducedCost(int candidate) const { return best_cost_[candidate]; }
+  double lastStep() const { return last_step_; }  // the step factor the last optimise ended with
+  // A cover of U by candidates of A, guided by the reduced costs of the last optimise; empty when it needs more than
+  // `limit` candidates or A cannot cover U.
+  std::vector<int> greedyCover(const Word* U, const Word* A, int limit) const;
+  // Reduced-cost fixing after the last optimise, for covers at most `room` above its bound: into `narrowed` the
+  // candidates of A a cover with them may hold (reduced cost <= room); returns one every such cover holds (-1: none).
+  int fixByReducedCost(const Word* A, double room, Word* narrowed) const;
+  // The root: from a dual solution, rounds of subgradient optimisation, each followed by the greedy cover, until the
+  // bound shows that no cover is smaller than `incumbent` candidates, the step factor runs out or past_deadline().
+  // `cover` receives the smallest cover found below `incumbent` (empty: none). Returns the bound.
+  double optimiseRoot(const Word* U, const Word* A, double* u, int incumbent,
+                      const std::function<bool()>& past_deadline, std::vector<int>& cover);
+
+ private:
+  double evaluate(const Word* U, const Word* A, const double* u);
+  double computeSubgradient(const Word* U, const double* u);
+
+  const CoreProblem& core_;
+  const int cw_;
+  std::vector<double> cost_, best_cost_;  // per candidate, valid on A
+  std::vector<double> subgradient_, best_u_;  // per element, valid on U
+  std::vector<Word> chosen_;  // candidates with negative reduced cost
+  double last_step_ = 0;
+};
+
+// A cover of U by at most `room` (up to 2) candidates of A, a single one when one suffices; empty when there is none.
+// Exact: of two, one covers the element with the fewest allowed coverers and the other the rest. The size search
+// ends here when a smaller cover may add only two candidates more, where most of its nodes lie.
+std::vector<int> smallCover(const CoreProblem& core, const Word* U, const Word* A, int room);
+
+// Multipliers with no negative reduced cost, where the bound is their sum: u_i = 1 / (most elements of U that an
+// allowed coverer of i covers). The start of the root's subgradient optimisation.
+void dualStart(const CoreProblem& core, const Word* U, const Word* A, double* u);
 
 // ---- shared by minimum_cover.cpp and minimum_cover_greedy.cpp -------------------------------------------------------
 

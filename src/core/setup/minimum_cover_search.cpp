@@ -4,11 +4,12 @@
 // Depth first, branching on the uncovered element with the fewest allowed coverers; later branches of a node exclude
 // the candidates of the earlier ones, so the subtrees partition the covers, and a branch dominated by an earlier one
 // (covers no more, earns no more) is skipped. The size bound is the larger of a greedy packing (uncovered elements
-// with pairwise disjoint coverer sets) and a dual solution of the covering LP. The bonus bound counts the most the
-// remaining slots can earn. A node is tight when its packing fills every slot: then each slot takes a candidate of
-// its own packed element, which narrows the candidates (and propagates through elements that only one packed
-// element's candidates cover), gives a stronger bonus bound (the LP dual over the packed elements' choice sets), and
-// passes on to the children, which skip their own bounds.
+// with pairwise disjoint coverer sets) and a dual solution of the covering LP; the size search adds the Lagrangian
+// bound with reduced-cost fixing and its greedy heuristic (minimum_cover_bound.cpp), and decides the last two
+// candidates exactly. The bonus bound counts the most the remaining slots can earn. A node is tight when its packing
+// fills every slot: then each slot takes a candidate of its own packed element, which narrows the candidates (and
+// propagates through elements that only one packed element's candidates cover), gives a stronger bonus bound (the LP
+// dual over the packed elements' choice sets), and passes on to the children, which skip their own bounds.
 #include <algorithm>
 #include <chrono>
 #include <climits>
@@ -23,6 +24,10 @@ namespace {
 
 bool betterBonus(double bonus, double best) { return bonus > best + 1e-9 * std::max(1.0, std::abs(best)); }
 
+// A Lagrangian bound above `budget` by more than this is taken as above it (sizes are whole numbers; the bound's
+// rounding error is far smaller).
+constexpr double kBoundTolerance = 1e-6;
+
 class BranchAndBound {
  public:
   BranchAndBound(const CoreProblem& core, bool use_bonus, double time_limit_s)
@@ -30,7 +35,9 @@ class BranchAndBound {
         use_bonus_(use_bonus),
         cw_(core.coverers.wordsPerRow()),
         ew_(core.covers.wordsPerRow()),
-        bw_(core.earns.wordsPerRow()) {
+        bw_(core.earns.wordsPerRow()),
+        lagrangian_(!use_bonus),
+        lagrange_(core) {
     if (std::isfinite(time_limit_s)) {
       has_deadline_ = true;
       deadline_ = std::chrono::steady_clock::now() +
@@ -68,8 +75,20 @@ class BranchAndBound {
     earned_.assign(static_cast<std::size_t>(depths) * bw_, 0);
     branches_.resize(depths);
     packings_.assign(depths, {});
+    relaxed_.assign(depths, 0);
     for (int e = 0; e < core_.elements; ++e) setBit(uncovered(0), e);
     for (int c = 0; c < core_.candidates; ++c) setBit(allowed(0), c);
+    if (lagrangian_) {
+      multipliers_.assign(static_cast<std::size_t>(depths) * core_.elements, 0.0);
+      narrowed_.assign(static_cast<std::size_t>(depths) * cw_, 0);
+      long long nonzeros = 0;
+      for (int e = 0; e < core_.elements; ++e) nonzeros += popcount(core_.coverers.row(e), cw_);
+      std::vector<int> cover;  // the root's bound, long optimised, and the better incumbent its heuristic finds
+      if (nonzeros <= kLagrangianNonzeros)
+        lagrange_.optimiseRoot(uncovered(0), allowed(0), multipliers(0), best_size_, [this] { return pastDeadline(); },
+                               cover);
+      recordExtension(0, cover);
+    }
     search(0, 0.0);
     CoreSolution out;
     out.chosen = best_;
@@ -86,17 +105,27 @@ class BranchAndBound {
     int candidate, covered;
     double bonus;
     bool dominated;
+    double cost;  // Lagrangian reduced cost (size search), 0 otherwise
+  };
+
+  // What the Lagrangian stage of a node leaves: its bound, the element to branch on, and a candidate every better
+  // cover below takes (-1: none).
+  struct LagrangianNode {
+    double bound = 0;
+    int branch_element = -1, must_take = -1;
   };
 
   Word* uncovered(int depth) { return uncovered_.data() + static_cast<std::size_t>(depth) * ew_; }
   Word* allowed(int depth) { return allowed_.data() + static_cast<std::size_t>(depth) * cw_; }
   Word* earned(int depth) { return earned_.data() + static_cast<std::size_t>(depth) * bw_; }
+  double* multipliers(int depth) { return multipliers_.data() + static_cast<std::size_t>(depth) * core_.elements; }
+  Word* narrowed(int depth) { return narrowed_.data() + static_cast<std::size_t>(depth) * cw_; }
 
-  bool outOfTime() {
-    if (timed_out_) return true;
-    if (has_deadline_ && (nodes_ & 1023) == 1 && std::chrono::steady_clock::now() > deadline_) timed_out_ = true;
+  bool pastDeadline() {
+    if (has_deadline_ && std::chrono::steady_clock::now() > deadline_) timed_out_ = true;
     return timed_out_;
   }
+  bool outOfTime() { return timed_out_ || ((nodes_ & 15) == 1 && pastDeadline()); }
 
   void record(int size, double bonus) {
     if (size < best_size_ || (use_bonus_ && size == best_size_ && betterBonus(bonus, best_bonus_))) {
@@ -344,8 +373,12 @@ class BranchAndBound {
       record(depth, bonus);
       return;
     }
-    const int slots = best_size_ - depth;  // candidates that may still be added without a worse size
+    int slots = best_size_ - depth;  // candidates that may still be added without a worse size
     if (slots <= 0) return;
+    if (!use_bonus_ && slots <= 3) {  // a smaller cover adds at most two: decided directly, without bounds
+      recordExtension(depth, smallCover(core_, U, A, slots - 1));
+      return;
+    }
     std::vector<int>& packed = packings_[depth];
 
     // A packing that fills every slot, inherited from a tight parent, keeps the node tight: skip the bounds.
@@ -368,18 +401,34 @@ class BranchAndBound {
       forEachBit(relevant_.data(), cw_, [&](int c) { marginal_[c] = freshBonus(core_, core_.earns.row(c), E); });
       if (!betterBonus(bonus + bonusBound(slots, A, E, packed), best_bonus_)) return;
     }
+    LagrangianNode relaxed;
+    relaxed_[depth] = lagrangian_ && node_nonzeros_ <= kLagrangianNonzeros;
+    if (relaxed_[depth]) {
+      if (!lagrangianNode(depth, U, A, relaxed)) return;
+      A = narrowed(depth);
+      branch_element = relaxed.branch_element;
+      slots = best_size_ - depth;  // the heuristic may have found a better cover
+    }
 
     std::vector<Branch>& branches = branches_[depth];
     branches.clear();
-    forEachBit(core_.coverers.row(branch_element), cw_, [&](int c) {
-      if (testBit(A, c))
-        branches.push_back({c, popcountAnd(core_.covers.row(c), U, ew_),
-                            use_bonus_ ? freshBonus(core_, core_.earns.row(c), E) : 0.0, false});
-    });
-    // Most newly covered first; in the bonus search most bonus first (good covers early prune most).
+    auto addBranch = [&](int c) {
+      branches.push_back({c, popcountAnd(core_.covers.row(c), U, ew_),
+                          use_bonus_ ? freshBonus(core_, core_.earns.row(c), E) : 0.0, false,
+                          relaxed_[depth] ? lagrange_.reducedCost(c) : 0.0});
+    };
+    if (relaxed.must_take >= 0)
+      addBranch(relaxed.must_take);  // every better cover below takes it: the only branch
+    else
+      forEachBit(core_.coverers.row(branch_element), cw_, [&](int c) {
+        if (testBit(A, c)) addBranch(c);
+      });
+    // Least reduced cost first in the size search, most bonus first in the bonus search (good covers early prune
+    // most), then most newly covered.
     const bool bonus_first = use_bonus_;
     std::sort(branches.begin(), branches.end(), [bonus_first](const Branch& a, const Branch& b) {
       if (bonus_first && a.bonus != b.bonus) return a.bonus > b.bonus;
+      if (a.cost != b.cost) return a.cost < b.cost;
       if (a.covered != b.covered) return a.covered > b.covered;
       if (a.bonus != b.bonus) return a.bonus > b.bonus;
       return a.candidate < b.candidate;
@@ -421,7 +470,47 @@ class BranchAndBound {
       if (timed_out_) return;
       if (lower > best_size_ - depth) return;  // the incumbent improved past what this node can offer
       if (lower == best_size_ - depth && !use_bonus_) return;
+      if (relaxed_[depth] && relaxed.bound > best_size_ - 1 - depth + kBoundTolerance) return;
     }
+  }
+
+  // `cover` (of the node's U) after the chosen stack, recorded when that is better.
+  void recordExtension(int depth, const std::vector<int>& cover) {
+    if (cover.empty()) return;
+    stack_.insert(stack_.end(), cover.begin(), cover.end());
+    record(depth + static_cast<int>(cover.size()), 0.0);
+    stack_.resize(depth);
+  }
+
+  // ---- the Lagrangian stage of the size search ----
+
+  // The node's Lagrangian bound, warm started from the parent's multipliers; the heuristic; then the allowed
+  // candidates narrowed by reduced cost into narrowed(depth): out when every cover taking one is too large, and a
+  // must-take when every cover without one is. False when no better cover lies below.
+  bool lagrangianNode(int depth, const Word* U, const Word* A, LagrangianNode& out) {
+    double* u = multipliers(depth);
+    if (depth > 0 && relaxed_[depth - 1]) {
+      const double* parent = multipliers(depth - 1);
+      forEachBit(U, ew_, [&](int i) { u[i] = parent[i]; });
+    } else if (depth > 0) {
+      dualStart(core_, U, A, u);
+    }
+    SubgradientPlan plan;
+    plan.iterations = kNodeIterations;
+    plan.step = kNodeStep;
+    plan.least_step = kNodeStep / 16;
+    plan.window = kNodeWindow;
+    plan.goal = best_size_ - 1 - depth + kBoundTolerance;
+    plan.upper = best_size_ - depth;
+    out.bound = lagrange_.optimise(U, A, u, plan);
+    if (out.bound > best_size_ - 1 - depth + kBoundTolerance) return false;
+    recordExtension(depth, lagrange_.greedyCover(U, A, best_size_ - 1 - depth));
+    const double room = best_size_ - 1 - depth - out.bound + kBoundTolerance;  // what a reduced cost may add
+    if (room < 0) return false;
+    Word* N = narrowed(depth);
+    out.must_take = lagrange_.fixByReducedCost(A, room, N);
+    out.branch_element = fewestCoverers(U, N);
+    return out.branch_element >= 0 && popcountAnd(core_.coverers.row(out.branch_element), N, cw_) > 0;
   }
 
   // The size bound of a node: max(packing, dual) over the candidates that count for it (packing into `packed`).
@@ -431,10 +520,12 @@ class BranchAndBound {
     int branch_element = -1, fewest = INT_MAX;
     std::fill(relevant_.begin(), relevant_.end(), 0);
     bool dead_end = false;
+    node_nonzeros_ = 0;
     forEachBit(U, ew_, [&](int e) {
       if (dead_end) return;
       const Word* row = core_.coverers.row(e);
       const int count = popcountAnd(row, A, cw_);
+      node_nonzeros_ += count;
       if (count == 0) dead_end = true;
       if (count < fewest) {
         fewest = count;
@@ -447,7 +538,10 @@ class BranchAndBound {
     const Word* sized = effectiveCandidates(A);
     orderUncovered(U, sized);
     lower = packingBound(sized, slots, packed);
-    if (lower < slots) lower = std::max(lower, static_cast<int>(std::ceil(dualBound(sized) - 1e-9)));
+    // Three candidates before the exact finish, the dual bound (a pass over every coverer bit, 1.1 million on a
+    // blade's core) prunes seldom: skipping it there halved the size search on the blade.
+    if (lower < slots && (use_bonus_ || slots > 4))
+      lower = std::max(lower, static_cast<int>(std::ceil(dualBound(sized) - 1e-9)));
     return branch_element;
   }
 
@@ -463,9 +557,24 @@ class BranchAndBound {
     return element;
   }
 
+  // A subgradient step costs a pass over the node's matrix. On dense cores (a blade's: 1.1 million nonzeros, 4899
+  // elements of some 200 coverers each) a few dozen steps cost more than thousands of combinatorial nodes, and the
+  // bound stays far below the optimum anyway (linear relaxation 4.5 for 6 there): the relaxation runs at a node only
+  // when its matrix has at most this many nonzeros.
+  static constexpr long long kLagrangianNonzeros = 200000;
+  // Below the root, a few subgradient steps from the parent's multipliers.
+  static constexpr int kNodeIterations = 15, kNodeWindow = 5;
+  static constexpr double kNodeStep = 0.2;
+
   const CoreProblem& core_;
   const bool use_bonus_;
   const int cw_, ew_, bw_;
+  const bool lagrangian_;  // the size search bounds by the Lagrangian relaxation and narrows by reduced costs
+  LagrangianBound lagrange_;
+  std::vector<double> multipliers_;  // per depth, one per core element
+  std::vector<Word> narrowed_;       // per depth: the allowed candidates after reduced-cost fixing
+  std::vector<char> relaxed_;        // per depth: the node ran the Lagrangian stage (its multipliers are current)
+  long long node_nonzeros_ = 0;      // of the last boundNode: coverer bits of U's elements within A
   bool has_deadline_ = false, timed_out_ = false, improved_ = false, size_is_minimal_ = false;
   std::chrono::steady_clock::time_point deadline_;
   long long nodes_ = 0;
