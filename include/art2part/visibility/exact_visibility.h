@@ -3,10 +3,13 @@
 // Triangle t is visible along d when n . d > 0 and some point of t has a clear line to infinity along +d. A point p
 // of t is hidden by triangle u exactly when the line p + s d, s > 0, meets u: when p's projection along d lies in the
 // projection of the part of u strictly in front of t's plane. So t's visible part, in projection, is t's projection
-// minus the union of those projections; t is visible when that leaves area. Brute force over every triangle: fine
-// for meshes of a few thousand triangles, or for chosen pairs of a big one.
+// minus the union of those projections; t is visible when that leaves area. Per direction every vertex is projected
+// once and a grid over the view plane finds the triangles whose shadow can reach t: a few milliseconds per direction
+// to set up and tens of microseconds per pair on a 100k-triangle part. Fine for every pair of a small mesh, or for
+// chosen pairs of a big one.
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include "art2part/geometry/mesh.h"
@@ -27,7 +30,11 @@ constexpr double kExactMinUncovered = 1e-6;
 // d need not be unit. Degenerate triangles are never visible and never hide anything.
 ExactPair exactVisibility(const Mesh& mesh, int t, const Vec3& d);
 
-// Every (triangle, direction) pair: O(triangles^2 x directions).
+// Chosen pairs (triangle, index into directions), grouped by direction internally; answers in the pairs' order.
+std::vector<ExactPair> exactVisibility(const Mesh& mesh, const std::vector<Vec3>& directions,
+                                       const std::vector<std::pair<int, int>>& pairs);
+
+// Every (triangle, direction) pair.
 VisibilityMap exactVisibility(const Mesh& mesh, const std::vector<Vec3>& directions);
 
 }  // namespace art2part

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
+#include <utility>
 
 namespace art2part {
 
@@ -128,59 +130,6 @@ Vec3 pointOfTriangle(const Mesh& mesh, int t, const std::vector<Eigen::Vector2d>
   return (1 - wb - wc) * mesh.corner(t, 0) + wb * mesh.corner(t, 1) + wc * mesh.corner(t, 2);
 }
 
-// The pair (t, unit d) given every vertex's projection xy along d.
-ExactPair exactPair(const Mesh& mesh, int t, const Vec3& d, const std::vector<Eigen::Vector2d>& xy,
-                    double tolerance) {
-  ExactPair result;
-  Target target;
-  target.t = t;
-  target.n = triangleNormal(mesh, t);
-  target.a = mesh.corner(t, 0);
-  target.tolerance = tolerance;
-  if (!(target.n.dot(d) > 0)) return result;
-  for (int axis = 0; axis < 2; ++axis) {
-    target.lo[axis] = std::min({xy[mesh.triangles[t][0]][axis], xy[mesh.triangles[t][1]][axis],
-                                xy[mesh.triangles[t][2]][axis]});
-    target.hi[axis] = std::max({xy[mesh.triangles[t][0]][axis], xy[mesh.triangles[t][1]][axis],
-                                xy[mesh.triangles[t][2]][axis]});
-  }
-  const double extent = std::max(target.hi[0] - target.lo[0], target.hi[1] - target.lo[1]);
-  if (!(extent > 0)) return result;
-  target.scale = kUnits / extent;
-  Path subject;
-  for (int v : mesh.triangles[t]) subject.push_back(toUnits(target, xy[v].x(), xy[v].y()));
-  const double full = ClipperLib::Area(subject);
-  if (!(full > 0)) return result;
-
-  Paths occluders;
-  for (int u = 0; u < mesh.triangleCount(); ++u) {
-    if (u == t || triangleNormal(mesh, u).isZero()) continue;
-    Path path = occluderPath(mesh, xy, target, u);
-    if (!path.empty()) occluders.push_back(std::move(path));
-  }
-  ClipperLib::Clipper clipper;
-  clipper.AddPath(subject, ClipperLib::ptSubject, true);
-  clipper.AddPaths(occluders, ClipperLib::ptClip, true);
-  Paths visible;
-  clipper.Execute(ClipperLib::ctDifference, visible, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-  double area = 0, largest = 0;
-  const Path* biggest = nullptr;
-  for (const Path& path : visible) {
-    const double a = ClipperLib::Area(path);
-    area += a;
-    if (a > largest) largest = a, biggest = &path;
-  }
-  result.uncovered = std::max(area, 0.0) / full;
-  result.visible = result.uncovered > kExactMinUncovered;
-  if (result.visible && biggest) {
-    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-    for (const IntPoint& p : *biggest) mean += Eigen::Vector2d(double(p.X), double(p.Y));
-    mean = mean / double(biggest->size()) / target.scale + Eigen::Vector2d(target.lo[0], target.lo[1]);
-    result.witness = pointOfTriangle(mesh, t, xy, mean);
-  }
-  return result;
-}
-
 std::vector<Eigen::Vector2d> projectVertices(const Mesh& mesh, const Vec3& d) {
   const ViewFrame frame = frameAlong(d);
   std::vector<Eigen::Vector2d> xy;
@@ -191,24 +140,169 @@ std::vector<Eigen::Vector2d> projectVertices(const Mesh& mesh, const Vec3& d) {
 
 double planeTolerance(const Mesh& mesh) { return kPlaneTolerance * std::max(boundingBox(mesh).diagonal(), 1e-300); }
 
+// One direction's view of the mesh: every vertex projected, and a uniform grid over the view plane listing the
+// triangles whose projected box meets each cell, so that a pair clips only against triangles whose shadow can reach
+// it (a few dozen on a real part instead of all of them).
+class ExactView {
+ public:
+  ExactView(const Mesh& mesh, const std::vector<Vec3>& normals, const Vec3& d, double tolerance)
+      : mesh_(mesh), normals_(normals), d_(d), tolerance_(tolerance), xy_(projectVertices(mesh, d)),
+        stamp_(mesh.triangleCount(), -1) {
+    const int count = mesh.triangleCount();
+    for (int t = 0; t < count; ++t) {
+      if (normals_[t].isZero()) continue;  // degenerate: hides nothing
+      for (int v : mesh.triangles[t]) lo_ = lo_.cwiseMin(xy_[v]), hi_ = hi_.cwiseMax(xy_[v]);
+    }
+    // About one cell per triangle: a cell then holds a few triangles where the surface is one layer deep.
+    const Eigen::Vector2d size = (hi_ - lo_).cwiseMax(1e-300);
+    const double cell = std::sqrt(size.x() * size.y() / std::max(count, 1));
+    for (int k = 0; k < 2; ++k) cells_[k] = std::clamp(static_cast<int>(size[k] / std::max(cell, 1e-300)), 1, 4096);
+    std::vector<int> counts(std::size_t(cells_[0]) * cells_[1] + 1, 0);
+    forEachTriangleCell([&](int, std::size_t c) { ++counts[c + 1]; });
+    for (std::size_t c = 1; c < counts.size(); ++c) counts[c] += counts[c - 1];
+    first_ = counts;
+    members_.resize(counts.back());
+    forEachTriangleCell([&](int t, std::size_t c) { members_[counts[c]++] = t; });
+  }
+
+  ExactPair pair(int t) {
+    ExactPair result;
+    Target target;
+    target.t = t;
+    target.n = normals_[t];
+    target.a = mesh_.corner(t, 0);
+    target.tolerance = tolerance_;
+    if (!(target.n.dot(d_) > 0)) return result;
+    for (int axis = 0; axis < 2; ++axis) {
+      target.lo[axis] = std::min({xy_[mesh_.triangles[t][0]][axis], xy_[mesh_.triangles[t][1]][axis],
+                                  xy_[mesh_.triangles[t][2]][axis]});
+      target.hi[axis] = std::max({xy_[mesh_.triangles[t][0]][axis], xy_[mesh_.triangles[t][1]][axis],
+                                  xy_[mesh_.triangles[t][2]][axis]});
+    }
+    const double extent = std::max(target.hi[0] - target.lo[0], target.hi[1] - target.lo[1]);
+    if (!(extent > 0)) return result;
+    target.scale = kUnits / extent;
+    Path subject;
+    for (int v : mesh_.triangles[t]) subject.push_back(toUnits(target, xy_[v].x(), xy_[v].y()));
+    const double full = ClipperLib::Area(subject);
+    if (!(full > 0)) return result;
+
+    ++query_;
+    stamp_[t] = query_;
+    Paths occluders;
+    int cell_lo[2], cell_hi[2];
+    for (int k = 0; k < 2; ++k) cell_lo[k] = cellOf(target.lo[k], k), cell_hi[k] = cellOf(target.hi[k], k);
+    for (int cy = cell_lo[1]; cy <= cell_hi[1]; ++cy)
+      for (int cx = cell_lo[0]; cx <= cell_hi[0]; ++cx) {
+        const std::size_t c = std::size_t(cy) * cells_[0] + cx;
+        for (int m = first_[c]; m < first_[c + 1]; ++m) {
+          const int u = members_[m];
+          if (stamp_[u] == query_) continue;
+          stamp_[u] = query_;
+          Path path = occluderPath(mesh_, xy_, target, u);
+          if (!path.empty()) occluders.push_back(std::move(path));
+        }
+      }
+    ClipperLib::Clipper clipper;
+    clipper.AddPath(subject, ClipperLib::ptSubject, true);
+    clipper.AddPaths(occluders, ClipperLib::ptClip, true);
+    Paths visible;
+    clipper.Execute(ClipperLib::ctDifference, visible, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+    double area = 0, largest = 0;
+    const Path* biggest = nullptr;
+    for (const Path& path : visible) {
+      const double a = ClipperLib::Area(path);
+      area += a;
+      if (a > largest) largest = a, biggest = &path;
+    }
+    result.uncovered = std::max(area, 0.0) / full;
+    result.visible = result.uncovered > kExactMinUncovered;
+    if (result.visible && biggest) {
+      Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+      for (const IntPoint& p : *biggest) mean += Eigen::Vector2d(double(p.X), double(p.Y));
+      mean = mean / double(biggest->size()) / target.scale + Eigen::Vector2d(target.lo[0], target.lo[1]);
+      result.witness = pointOfTriangle(mesh_, t, xy_, mean);
+    }
+    return result;
+  }
+
+ private:
+  int cellOf(double coordinate, int k) const {
+    const double f = (coordinate - lo_[k]) / std::max(hi_[k] - lo_[k], 1e-300) * cells_[k];
+    return std::clamp(static_cast<int>(std::floor(f)), 0, cells_[k] - 1);
+  }
+
+  // Calls visit(t, cell) for every non-degenerate triangle and every cell its projected box meets.
+  template <typename Visit>
+  void forEachTriangleCell(Visit visit) const {
+    for (int t = 0; t < mesh_.triangleCount(); ++t) {
+      if (normals_[t].isZero()) continue;
+      int lo[2], hi[2];
+      for (int k = 0; k < 2; ++k) {
+        const double a = xy_[mesh_.triangles[t][0]][k], b = xy_[mesh_.triangles[t][1]][k],
+                     c = xy_[mesh_.triangles[t][2]][k];
+        lo[k] = cellOf(std::min({a, b, c}), k);
+        hi[k] = cellOf(std::max({a, b, c}), k);
+      }
+      for (int cy = lo[1]; cy <= hi[1]; ++cy)
+        for (int cx = lo[0]; cx <= hi[0]; ++cx) visit(t, std::size_t(cy) * cells_[0] + cx);
+    }
+  }
+
+  const Mesh& mesh_;
+  const std::vector<Vec3>& normals_;
+  const Vec3 d_;
+  const double tolerance_;
+  const std::vector<Eigen::Vector2d> xy_;
+  Eigen::Vector2d lo_ = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector2d hi_ = -lo_;
+  int cells_[2] = {1, 1};
+  std::vector<int> first_, members_;  // the triangles of cell c: members_[first_[c] .. first_[c + 1])
+  std::vector<int> stamp_;            // the last query that met each triangle, so each is clipped once
+  int query_ = 0;
+};
+
+std::vector<Vec3> normalsOf(const Mesh& mesh) {
+  std::vector<Vec3> normals(mesh.triangleCount());
+  for (int t = 0; t < mesh.triangleCount(); ++t) normals[t] = triangleNormal(mesh, t);
+  return normals;
+}
+
 }  // namespace
 
 ExactPair exactVisibility(const Mesh& mesh, int t, const Vec3& d) {
   if (!(d.norm() > 0)) return {};
-  const Vec3 unit = d.normalized();
-  return exactPair(mesh, t, unit, projectVertices(mesh, unit), planeTolerance(mesh));
+  const std::vector<Vec3> normals = normalsOf(mesh);
+  ExactView view(mesh, normals, d.normalized(), planeTolerance(mesh));
+  return view.pair(t);
+}
+
+std::vector<ExactPair> exactVisibility(const Mesh& mesh, const std::vector<Vec3>& directions,
+                                       const std::vector<std::pair<int, int>>& pairs) {
+  std::vector<ExactPair> out(pairs.size());
+  if (mesh.triangles.empty()) return out;
+  std::vector<std::vector<std::size_t>> by_direction(directions.size());
+  for (std::size_t i = 0; i < pairs.size(); ++i) by_direction.at(pairs[i].second).push_back(i);
+  const std::vector<Vec3> normals = normalsOf(mesh);
+  const double tolerance = planeTolerance(mesh);
+  for (std::size_t d = 0; d < directions.size(); ++d) {
+    if (by_direction[d].empty() || !(directions[d].norm() > 0)) continue;
+    ExactView view(mesh, normals, directions[d].normalized(), tolerance);
+    for (std::size_t i : by_direction[d]) out[i] = view.pair(pairs[i].first);
+  }
+  return out;
 }
 
 VisibilityMap exactVisibility(const Mesh& mesh, const std::vector<Vec3>& directions) {
   VisibilityMap map{BitMatrix(mesh.triangleCount(), static_cast<int>(directions.size()))};
   if (mesh.triangles.empty()) return map;
+  const std::vector<Vec3> normals = normalsOf(mesh);
   const double tolerance = planeTolerance(mesh);
   for (int d = 0; d < static_cast<int>(directions.size()); ++d) {
     if (!(directions[d].norm() > 0)) continue;
-    const Vec3 unit = directions[d].normalized();
-    const std::vector<Eigen::Vector2d> xy = projectVertices(mesh, unit);
+    ExactView view(mesh, normals, directions[d].normalized(), tolerance);
     for (int t = 0; t < mesh.triangleCount(); ++t)
-      if (exactPair(mesh, t, unit, xy, tolerance).visible) map.bits.set(t, d);
+      if (view.pair(t).visible) map.bits.set(t, d);
   }
   return map;
 }
