@@ -48,8 +48,8 @@ constexpr std::size_t kBlock = 1024;
 // Edge refinement: where along a shared edge the extra rays start (fractions from its first corner), and how many
 // rounds of spreading from newly visible triangles to their neighbours at most (a round costs only the edges beside
 // the triangles the last one found, so the cap is generous: a visible strip can cross many thin triangles).
-constexpr double kEdgeSamples[] = {0.5, 0.12, 0.88};
-constexpr int kEdgeSampleCount = 3;
+constexpr double kEdgeSamples[] = {0.5, 0.12, 0.88, 0.03, 0.97};
+constexpr int kEdgeSampleCount = 5;
 constexpr int kRefineRounds = 24;
 
 // The id of a ray whose occluder is not worth recording: beyond every position, so the filter skips it.
