@@ -1,12 +1,13 @@
 // Visibility benchmarks (issue 3): speed of both backends beside the naive 1024 x 1024 OSMesa loop, linear scaling
 // in triangles and directions, and the agreement of the backends on every shared part.
-//   bench_visibility [speed [default]|scaling|accuracy [PART [LEVEL]]|judge [PART [LEVEL [SAMPLES]]]|all]
+//   bench_visibility [speed [default|ray]|scaling|accuracy [PART [LEVEL]]|judge [PART [LEVEL [SAMPLES]]]|all]
 // (default all; PART a file name in shared/parts, "" for every part). judge asks the exact oracle about sampled pairs:
 // where the backends disagree, which is right, and how often each is wrong on pairs taken at random.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <random>
 #include <string>
 #include <utility>
@@ -36,14 +37,16 @@ void printRate(const char* what, int triangles, int directions, double seconds) 
               pairs / seconds);
 }
 
-// only: "" for every figure, "default" for the default ray backend alone.
+// only: "" for every figure, "default" for the default ray backend alone, "ray" for the ray figures.
 void speed(const std::string& only) {
   std::printf("speed: 100k-triangle part x 1024 directions (level 4), 2 threads unless said\n");
   const Part part = loadPart(kParts + "/nist_ctc_02_asme1_rc_fine_tess.stl");
   const DirectionSet set = sampleSphere(4);
   const int T = part.mesh.triangleCount(), D = set.size();
-  double s = secondsOf([&] { rayVisibility(part.mesh, set.directions, withEdgeRefinement()); });
-  printRate("ray, 4 samples + edges [default]", T, D, s);
+  double s = secondsOf([&] { rayVisibility(part.mesh, set.directions, defaultRayOptions()); });
+  printRate("ray, 1 sample + edges [default]", T, D, s);
+  s = secondsOf([&] { rayVisibility(part.mesh, set.directions, withEdgeRefinement()); });
+  printRate("ray, 4 samples + edges", T, D, s);
   if (only == "default") return;
   s = secondsOf([&] { rayVisibility(part.mesh, set.directions); });
   printRate("ray (Embree), 4 samples", T, D, s);
@@ -51,6 +54,7 @@ void speed(const std::string& only) {
   one.samples_per_triangle = 1;
   s = secondsOf([&] { rayVisibility(part.mesh, set.directions, one); });
   printRate("ray (Embree), 1 sample", T, D, s);
+  if (only == "ray") return;
   RenderVisibilityOptions render;
   s = secondsOf([&] { renderVisibility(part.mesh, set.directions, render); });
   printRate("render (OSMesa ids), auto resolution", T, D, s);
@@ -71,14 +75,14 @@ void scaling() {
     LoadOptions load;
     load.chordal_tolerance = tolerance;
     const Part part = loadPart(kParts + "/nist_ctc_02_asme1_rc.stp", load);
-    const double s = secondsOf([&] { rayVisibility(part.mesh, set.directions, withEdgeRefinement()); });
+    const double s = secondsOf([&] { rayVisibility(part.mesh, set.directions, defaultRayOptions()); });
     printRate(("CTC 2, chordal " + std::to_string(tolerance).substr(0, 4) + " mm").c_str(),
               part.mesh.triangleCount(), set.size(), s);
   }
   const Part part = loadPart(kParts + "/nist_ctc_02_asme1_rc_fine_tess.stl");
   for (int level : {3, 4, 5}) {
     const DirectionSet dirs = sampleSphere(level);
-    const double s = secondsOf([&] { rayVisibility(part.mesh, dirs.directions, withEdgeRefinement()); });
+    const double s = secondsOf([&] { rayVisibility(part.mesh, dirs.directions, defaultRayOptions()); });
     printRate(("fine tessellation, level " + std::to_string(level)).c_str(), part.mesh.triangleCount(), dirs.size(), s);
   }
 }
@@ -99,6 +103,7 @@ BackendMaps backendMaps(const std::string& name, int level) {
   VisibilityOptions options;
   options.level = level;
   options.side_correction = false;
+  if (std::getenv("RAY_SAMPLES")) options.ray.samples_per_triangle = std::atoi(std::getenv("RAY_SAMPLES"));  // TEMP
   maps.ray_seconds = secondsOf([&] { maps.ray = analyseVisibility(maps.part, options); });
   options.backend = VisibilityBackend::Render;
   maps.render_seconds = secondsOf([&] { maps.render = analyseVisibility(maps.part, options); });

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "art2part/visibility/exact_visibility.h"
+#include "art2part/visibility/visibility.h"
 #include "test_meshes.h"
 
 using namespace art2part;
@@ -245,5 +246,87 @@ TEST(ExactVisibility, AFinelyTessellatedFloorHalfUnderARoof) {
     if (x > 10 && x < 11) {
       EXPECT_NEAR(exactVisibility(mesh, t, directions[2]).uncovered, t % 2 ? 0.75 : 0.25, 1e-6) << t;
     }
+  }
+}
+
+// ---- the backends against the oracle, on the cases their sampling was tuned for ------------------------------------
+
+namespace {
+
+// A unit square on the floor split along its diagonal: A = (0,0) (1,0) (1,1) below it, B = (0,0) (1,1) (0,1) above,
+// sharing the diagonal; and a roof at height 1 over {y >= x, x <= 0.9}, which hides all of B but the corner x > 0.9
+// (1% of it) along +z and none of A.
+Mesh squareUnderARoofWithAWindow() {
+  Mesh mesh;
+  mesh.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)};
+  mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+  addTriangle(mesh, Vec3(-2, -2, 1), Vec3(0.9, 5, 1), Vec3(0.9, 0.9, 1));  // facing down
+  addTriangle(mesh, Vec3(-2, -2, 1), Vec3(-2, 5, 1), Vec3(0.9, 5, 1));
+  return mesh;
+}
+
+}  // namespace
+
+TEST(BackendsAgainstTheOracle, ACornerPeekingOutNextToAVisibleNeighbour) {
+  const Mesh mesh = squareUnderARoofWithAWindow();
+  const std::vector<Vec3> up = {Vec3(0, 0, 1)};
+  const ExactPair b = exactVisibility(mesh, 1, up[0]);
+  ASSERT_TRUE(b.visible);
+  ASSERT_NEAR(b.uncovered, 0.01, 1e-6);
+  ASSERT_NEAR(exactVisibility(mesh, 0, up[0]).uncovered, 1.0, 1e-6);
+  // Every interior sample of B lies under the roof: the plain sample model misses the corner ...
+  RayVisibilityOptions samples;
+  samples.samples_per_triangle = 7;
+  EXPECT_FALSE(rayVisibility(mesh, up, samples).bits.get(1, 0));
+  // ... and edge refinement from A finds it from the end of the shared diagonal, as does the renderer's fallback at
+  // a resolution whose pixels (about 0.1) are as wide as the window.
+  const VisibilityMap ray = rayVisibility(mesh, up, defaultRayOptions());
+  EXPECT_TRUE(ray.bits.get(0, 0));
+  EXPECT_TRUE(ray.bits.get(1, 0));
+  RenderVisibilityOptions render;
+  render.resolution = 96;
+  render.threads = 1;
+  const VisibilityMap rendered = renderVisibility(mesh, up, render);
+  EXPECT_TRUE(rendered.bits.get(0, 0));
+  EXPECT_TRUE(rendered.bits.get(1, 0));
+}
+
+TEST(BackendsAgainstTheOracle, AHiddenCentreWithCornersOutsideIsRescued) {
+  // A big floor triangle alone (no neighbour to spread from) under a closed box standing on it over its centroid:
+  // the centroid sees out along no direction, the corners along every upward one.
+  Mesh mesh;
+  const int floor = addTriangle(mesh, Vec3(0, 0, 0), Vec3(10, 0, 0), Vec3(0, 10, 0));
+  test::append(mesh, test::box(Vec3(2, 2, 0), Vec3(5, 5, 1)));
+  const std::vector<Vec3> directions = test::randomDirections(40, 11);
+  RayVisibilityOptions centroid;
+  centroid.samples_per_triangle = 1;
+  EXPECT_EQ(rayVisibility(mesh, directions, centroid).bits.rowCount(floor), 0);
+  const VisibilityMap rescued = rayVisibility(mesh, directions, defaultRayOptions());
+  int upward = 0;
+  for (int d = 0; d < 40; ++d) {
+    if (directions[d].z() < 0.2) continue;  // low directions: the box may hide the sample corners
+    ++upward;
+    EXPECT_TRUE(exactVisibility(mesh, floor, directions[d]).visible) << d;
+    EXPECT_TRUE(rescued.bits.get(floor, d)) << d;
+  }
+  EXPECT_GT(upward, 10);
+}
+
+TEST(BackendsAgainstTheOracle, ASliverThinnerThanAPixelSeenThroughAGap) {
+  Mesh mesh;
+  const int sliver = addTriangle(mesh, Vec3(0, 0.999, 0), Vec3(2, 1.0, 0), Vec3(0, 1.001, 0));
+  addRectangle(mesh, -1, -1, 3, 1.0, 1, false);
+  addRectangle(mesh, -1, 1.001, 3, 3, 1, false);
+  const std::vector<Vec3> directions = {Vec3(0, 0, 1), Vec3(0.5, 0, 1), Vec3(0, 0.01, 1)};
+  RenderVisibilityOptions render;
+  render.resolution = 64;  // pixels about 0.1 wide: 100 times the gap
+  render.threads = 1;
+  const VisibilityMap rendered = renderVisibility(mesh, directions, render);
+  const VisibilityMap ray = rayVisibility(mesh, directions, defaultRayOptions());
+  for (int d = 0; d < 3; ++d) {
+    const bool exact = exactVisibility(mesh, sliver, directions[d]).visible;
+    EXPECT_EQ(exact, d < 2) << d;
+    EXPECT_EQ(rendered.bits.get(sliver, d), exact) << d;
+    EXPECT_EQ(ray.bits.get(sliver, d), exact) << d;
   }
 }

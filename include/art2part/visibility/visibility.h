@@ -46,11 +46,24 @@ struct RayVisibilityOptions {
   // that edge: rays from points just inside the shared edge find it (repeated while it finds more). Off, the answer
   // is the plain sample model; analyseVisibility() turns it on (see withEdgeRefinement()).
   bool refine_edges = false;
+  // Afterwards, triangles visible along no direction get rays from every sample point (7) along every direction, so
+  // that fewer samples never lose a triangle for good. Off, the plain sample model; withEdgeRefinement() turns it on.
+  bool rescue_unseen = false;
 };
 
 inline RayVisibilityOptions withEdgeRefinement(RayVisibilityOptions options = {}) {
   options.refine_edges = true;
+  options.rescue_unseen = true;
   return options;
+}
+
+// analyseVisibility()'s default: the centroid ray, then edge refinement and the rescue. Checked against the exact
+// oracle (bench_visibility judge) it is as right as four samples with refinement on every shared part (the
+// refinement, from both ends of each shared edge, finds what the three corner samples did) and a quarter faster.
+inline RayVisibilityOptions defaultRayOptions() {
+  RayVisibilityOptions options;
+  options.samples_per_triangle = 1;
+  return withEdgeRefinement(options);
 }
 
 // Ray casting (Embree): rays from sample points of each front-facing triangle along d; visible when one escapes

@@ -67,17 +67,25 @@ Vec3 unit(const Vec3& d) {
 // position's last occluded ray (-1: none yet).
 class Tracer {
  public:
-  Tracer(RTCScene scene, const Prepared& p, bool refine)
-      : scene_(scene), p_(p), refine_(refine), occluder_(p.size(), -1), seen_(refine ? p.size() : 0, -1) {}
+  // subset: positions (ascending) to trace, every triangle when empty; samples: passes per direction.
+  Tracer(RTCScene scene, const Prepared& p, bool refine, const std::vector<int>& subset, int samples)
+      : scene_(scene), p_(p), refine_(refine), subset_(subset), samples_(samples), occluder_(p.size(), -1),
+        seen_(refine ? p.size() : 0, -1) {}
 
   // Positions of the triangles visible along unit direction d.
   const std::vector<int>& visibleAlong(const Vec3& d) {
     visible_.clear();
     pending_.clear();
     const double dx = d.x(), dy = d.y(), dz = d.z();
-    for (int i = 0; i < p_.size(); ++i)
-      if (p_.nx[i] * dx + p_.ny[i] * dy + p_.nz[i] * dz > 0.0) pending_.push_back(i);
-    for (int s = 0; s < p_.samples && !pending_.empty(); ++s) samplePass(s, d);
+    auto facing = [&](int i) { return p_.nx[i] * dx + p_.ny[i] * dy + p_.nz[i] * dz > 0.0; };
+    if (subset_.empty()) {
+      for (int i = 0; i < p_.size(); ++i)
+        if (facing(i)) pending_.push_back(i);
+    } else {
+      for (int i : subset_)
+        if (facing(i)) pending_.push_back(i);
+    }
+    for (int s = 0; s < samples_ && !pending_.empty(); ++s) samplePass(s, d);
     if (refine_) refineEdges(d);
     return visible_;
   }
@@ -203,6 +211,8 @@ class Tracer {
   RTCScene scene_;
   const Prepared& p_;
   const bool refine_;
+  const std::vector<int>& subset_;
+  const int samples_;
   std::vector<int> occluder_;
   std::vector<int> pending_, hidden_, visible_;
   std::array<char, kBlock> walked_;  // whether the walk settled each triangle of the block
@@ -217,8 +227,10 @@ class Tracer {
 // several of tracing).
 class Job {
  public:
-  Job(RTCScene scene, const Prepared& prepared, bool refine, const std::vector<Vec3>& directions, BitMatrix& bits)
-      : scene_(scene), prepared_(prepared), refine_(refine), directions_(directions), bits_(bits) {}
+  Job(RTCScene scene, const Prepared& prepared, bool refine, const std::vector<int>& subset, int samples,
+      const std::vector<Vec3>& directions, BitMatrix& bits)
+      : scene_(scene), prepared_(prepared), refine_(refine), subset_(subset), samples_(samples),
+        directions_(directions), bits_(bits) {}
 
   void run(int threads, const Progress& progress) {
     std::vector<std::thread> pool;
@@ -258,7 +270,7 @@ class Job {
 
   void work() {
     try {
-      Tracer tracer(scene_, prepared_, refine_);
+      Tracer tracer(scene_, prepared_, refine_, subset_, samples_);
       for (int d = next_++; d < static_cast<int>(directions_.size()) && !stop_; d = next_++)
         record(d, tracer.visibleAlong(unit(directions_[d])));
     } catch (...) {
@@ -279,6 +291,8 @@ class Job {
   RTCScene scene_;
   const Prepared& prepared_;
   const bool refine_;
+  const std::vector<int>& subset_;
+  const int samples_;
   const std::vector<Vec3>& directions_;
   BitMatrix& bits_;
   std::atomic<int> next_{0};
@@ -308,8 +322,18 @@ VisibilityMap rayVisibility(const Mesh& mesh, const std::vector<Vec3>& direction
   // 7 is every sample point defined.
   const Prepared prepared = raycast::prepare(mesh, std::clamp(options.samples_per_triangle, 1, raycast::kMaxSamples));
   const raycast::EmbreeScene scene(prepared);
-  Job job(scene.scene(), prepared, options.refine_edges, directions, map.bits);
-  job.run(threadCount(options.threads, static_cast<int>(directions.size())), progress);
+  const int threads = threadCount(options.threads, static_cast<int>(directions.size()));
+  const std::vector<int> everything;
+  Job(scene.scene(), prepared, options.refine_edges, everything, prepared.samples, directions, map.bits)
+      .run(threads, progress);
+  // Rescue: a triangle seen along no direction at all gets every sample point along every direction. Few
+  // triangles are unseen (pockets' hidden faces, slivers under a lip), so this costs little and keeps the fewer
+  // samples of the main passes from losing a triangle for good.
+  std::vector<int> unseen;
+  for (int i = 0; i < prepared.size() && options.rescue_unseen; ++i)
+    if (map.bits.rowCount(prepared.triangle[i]) == 0) unseen.push_back(i);
+  if (!unseen.empty() && prepared.samples < raycast::kMaxSamples)
+    Job(scene.scene(), prepared, false, unseen, raycast::kMaxSamples, directions, map.bits).run(threads, {});
   if (progress) progress(1.0);
   return map;
 }
