@@ -7,7 +7,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <random>
 #include <string>
 #include <utility>
@@ -103,7 +102,6 @@ BackendMaps backendMaps(const std::string& name, int level) {
   VisibilityOptions options;
   options.level = level;
   options.side_correction = false;
-  if (std::getenv("RAY_SAMPLES")) options.ray.samples_per_triangle = std::atoi(std::getenv("RAY_SAMPLES"));  // TEMP
   maps.ray_seconds = secondsOf([&] { maps.ray = analyseVisibility(maps.part, options); });
   options.backend = VisibilityBackend::Render;
   maps.render_seconds = secondsOf([&] { maps.render = analyseVisibility(maps.part, options); });
@@ -124,6 +122,7 @@ void accuracy(const std::string& only, int level) {
     const std::vector<Vec3>& directions = maps.ray.directions.directions;
     RayVisibilityOptions dense = withEdgeRefinement();
     dense.samples_per_triangle = 7;
+    dense.rescue_unseen = false;  // the plain dense model: the rescue's extra rays are the default's own
     const VisibilityMap reference = rayVisibility(mesh, directions, dense);
     long long pairs = 0, ray_only = 0, render_only = 0;
     for (int t = 0; t < mesh.triangleCount(); ++t) {

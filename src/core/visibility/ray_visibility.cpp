@@ -67,10 +67,11 @@ Vec3 unit(const Vec3& d) {
 // position's last occluded ray (-1: none yet).
 class Tracer {
  public:
-  // subset: positions (ascending) to trace, every triangle when empty; samples: passes per direction.
+  // subset: positions (ascending) to trace, every triangle when empty; samples: passes per direction. The rescue
+  // (a subset) also tries the edges of each triangle still hidden that it shares with a front-facing triangle.
   Tracer(RTCScene scene, const Prepared& p, bool refine, const std::vector<int>& subset, int samples)
       : scene_(scene), p_(p), refine_(refine), subset_(subset), samples_(samples), occluder_(p.size(), -1),
-        seen_(refine ? p.size() : 0, -1) {}
+        seen_(refine || !subset.empty() ? p.size() : 0, -1) {}
 
   // Positions of the triangles visible along unit direction d.
   const std::vector<int>& visibleAlong(const Vec3& d) {
@@ -87,6 +88,7 @@ class Tracer {
     }
     for (int s = 0; s < samples_ && !pending_.empty(); ++s) samplePass(s, d);
     if (refine_) refineEdges(d);
+    if (!subset_.empty()) rescueEdgePass(d);
     return visible_;
   }
 
@@ -131,6 +133,30 @@ class Tracer {
         owners_.push_back(i);
       }
     }
+    traceEdgeRays();
+  }
+
+  // The rescue's edge rays: from near each edge a triangle still hidden shares with a front-facing one, every edge
+  // that refinement from a visible neighbour could try, whether or not the main passes found that neighbour.
+  void rescueEdgePass(const Vec3& d) {
+    ++stamp_;
+    for (int i : visible_) seen_[i] = stamp_;
+    rays_.clear();
+    owners_.clear();
+    for (int i : pending_)
+      for (int k = 0; k < 3; ++k) {
+        const int j = p_.walk[i].across[k];
+        if (j < 0 || !(p_.nx[j] * d.x() + p_.ny[j] * d.y() + p_.nz[j] * d.z() > 0.0)) continue;
+        if (rays_.size() + kEdgeSampleCount > kBlock) traceEdgeRays();
+        for (double along : kEdgeSamples) {
+          // These triangles are mostly deep inside: what hid their samples hides their edges, and a walk from it
+          // settles the ray without Embree (a walk's hit is a real hit).
+          const Float3 origin = raycast::edgeSample(p_, i, k, along);
+          if (occluder_[i] >= 0 && raycast::walkToHit(p_, origin, d, occluder_[i]) >= 0) continue;
+          addRay(origin, d, kNoOccluder);
+          owners_.push_back(i);
+        }
+      }
     traceEdgeRays();
   }
 
@@ -326,13 +352,14 @@ VisibilityMap rayVisibility(const Mesh& mesh, const std::vector<Vec3>& direction
   const std::vector<int> everything;
   Job(scene.scene(), prepared, options.refine_edges, everything, prepared.samples, directions, map.bits)
       .run(threads, progress);
-  // Rescue: a triangle seen along no direction at all gets every sample point along every direction. Few
-  // triangles are unseen (pockets' hidden faces, slivers under a lip), so this costs little and keeps the fewer
-  // samples of the main passes from losing a triangle for good.
+  // Rescue: a triangle seen along no direction at all gets every sample point along every direction, and points near
+  // its edges shared with front-facing triangles: every ray a 7-sample run with refinement could try for it. Few
+  // triangles are unseen (pockets' hidden faces, slivers under a lip), so this costs little and keeps the single
+  // sample of the main passes from losing a triangle for good.
   std::vector<int> unseen;
   for (int i = 0; i < prepared.size() && options.rescue_unseen; ++i)
     if (map.bits.rowCount(prepared.triangle[i]) == 0) unseen.push_back(i);
-  if (!unseen.empty() && prepared.samples < raycast::kMaxSamples)
+  if (!unseen.empty())
     Job(scene.scene(), prepared, false, unseen, raycast::kMaxSamples, directions, map.bits).run(threads, {});
   if (progress) progress(1.0);
   return map;
