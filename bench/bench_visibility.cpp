@@ -250,13 +250,18 @@ void judge(const std::string& only, int level, int samples) {
         ++inside;
     }
     std::printf("    ray misses: witness near a corner %d, near an edge %d, inside %d\n", near_corner, near_edge, inside);
-    int ray_wrong = 0, render_wrong = 0;
+    int ray_wrong = 0, render_wrong = 0, both_miss = 0;
+    std::vector<double> missed;  // uncovered fraction of the pairs both backends call hidden and the oracle visible
     for (std::size_t i = 0; i < all.size(); ++i) {
-      ray_wrong += maps.ray.map.bits.get(all[i].first, all[i].second) != on_all[i].visible;
-      render_wrong += maps.render.map.bits.get(all[i].first, all[i].second) != on_all[i].visible;
+      const bool ray = maps.ray.map.bits.get(all[i].first, all[i].second);
+      const bool render = maps.render.map.bits.get(all[i].first, all[i].second);
+      ray_wrong += ray != on_all[i].visible;
+      render_wrong += render != on_all[i].visible;
+      if (!ray && !render && on_all[i].visible) ++both_miss, missed.push_back(on_all[i].uncovered);
     }
-    std::printf("    random pairs: ray wrong %.5f, render wrong %.5f (of %zu)\n", double(ray_wrong) / all.size(),
-                double(render_wrong) / all.size(), all.size());
+    std::printf("    random pairs: ray wrong %.5f, render wrong %.5f (of %zu); both miss %d, median uncovered %.2e\n",
+                double(ray_wrong) / all.size(), double(render_wrong) / all.size(), all.size(), both_miss,
+                median(missed));
   }
 }
 
