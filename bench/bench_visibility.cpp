@@ -44,9 +44,9 @@ void speed(const std::string& only) {
   const int T = part.mesh.triangleCount(), D = set.size();
   double s = secondsOf([&] { rayVisibility(part.mesh, set.directions, defaultRayOptions()); });
   printRate("ray, 1 sample + edges [default]", T, D, s);
+  if (only == "default") return;
   s = secondsOf([&] { rayVisibility(part.mesh, set.directions, withEdgeRefinement()); });
   printRate("ray, 4 samples + edges", T, D, s);
-  if (only == "default") return;
   s = secondsOf([&] { rayVisibility(part.mesh, set.directions); });
   printRate("ray (Embree), 4 samples", T, D, s);
   RayVisibilityOptions one;
