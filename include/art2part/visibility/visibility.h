@@ -57,9 +57,11 @@ inline RayVisibilityOptions withEdgeRefinement(RayVisibilityOptions options = {}
   return options;
 }
 
-// analyseVisibility()'s default: the centroid ray, then edge refinement and the rescue. Checked against the exact
-// oracle (bench_visibility judge) it is as right as four samples with refinement on every shared part (the
-// refinement, from both ends of each shared edge, finds what the three corner samples did) and a quarter faster.
+// analyseVisibility()'s default: the centroid ray, then edge refinement and the rescue. Measured: on the 122k-triangle
+// part it finds 99.95% of the pairs four samples with refinement find, and a quarter faster; against the exact oracle
+// (bench_visibility judge, 1000 random pairs) CTC 1 and mount_rush are wrong as often either way (1.1%, 0.9%: pieces
+// of under 0.1% of a triangle); mount_rush's agreement with the render backend drops from 0.9987 to 0.9977 (interior
+// pieces the corner samples found).
 inline RayVisibilityOptions defaultRayOptions() {
   RayVisibilityOptions options;
   options.samples_per_triangle = 1;
