@@ -60,8 +60,8 @@ inline RayVisibilityOptions withEdgeRefinement(RayVisibilityOptions options = {}
 // analyseVisibility()'s default: the centroid ray, then edge refinement and the rescue. Measured: on the 122k-triangle
 // part it finds 99.95% of the pairs four samples with refinement find, and a quarter faster; against the exact oracle
 // (bench_visibility judge, 1000 random pairs) CTC 1 and mount_rush are wrong as often either way (1.1%, 0.9%; on CTC 1
-// the pairs both backends miss show a median 0.03% of the triangle); mount_rush's agreement with the render backend drops from 0.9987 to 0.9977 (interior
-// pieces the corner samples found).
+// the pairs both backends miss show a median 0.03% of the triangle); mount_rush's agreement with the render backend
+// drops from 0.9987 to 0.9977 (interior pieces the corner samples found).
 inline RayVisibilityOptions defaultRayOptions() {
   RayVisibilityOptions options;
   options.samples_per_triangle = 1;
