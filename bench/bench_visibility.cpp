@@ -249,7 +249,8 @@ void judge(const std::string& only, int level, int samples) {
       else
         ++inside;
     }
-    std::printf("    ray misses: witness near a corner %d, near an edge %d, inside %d\n", near_corner, near_edge, inside);
+    std::printf("    ray misses: witness near a corner %d, near an edge %d, inside %d\n", near_corner, near_edge,
+                inside);
     int ray_wrong = 0, render_wrong = 0, both_miss = 0;
     std::vector<double> missed;  // uncovered fraction of the pairs both backends call hidden and the oracle visible
     for (std::size_t i = 0; i < all.size(); ++i) {

@@ -47,7 +47,8 @@ struct RayVisibilityOptions {
   // is the plain sample model; analyseVisibility() turns it on (see withEdgeRefinement()).
   bool refine_edges = false;
   // Afterwards, triangles visible along no direction get rays from every sample point (7) along every direction, and
-  // from near their edges shared with front-facing triangles, so that fewer samples never lose a triangle. Off, the plain sample model; withEdgeRefinement() turns it on.
+  // from near their edges shared with front-facing triangles, so that fewer samples never lose a triangle. Off, the
+  // plain sample model; withEdgeRefinement() turns it on.
   bool rescue_unseen = false;
 };
 

@@ -367,7 +367,8 @@ VisibilityMap renderVisibility(const Mesh& mesh, const std::vector<Vec3>& direct
 
   const Scene scene = idrender::prepareScene(mesh, options);
   std::unique_ptr<idrender::RayFallback> fallback;
-  if (options.ray_fallback) fallback = std::make_unique<idrender::RayFallback>(mesh, 2 * scene.radius / scene.resolution);
+  const double pixel = 2 * scene.radius / scene.resolution;
+  if (options.ray_fallback) fallback = std::make_unique<idrender::RayFallback>(mesh, pixel);
   Shared shared(scene, fallback.get(), directions, map.bits);
   const int threads = threadCount(options, directions.size());
   shared.running = threads;
