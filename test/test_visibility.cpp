@@ -68,8 +68,9 @@ TEST(Cones, ABoxTopSeesAHemisphereAndCommonConesIntersect) {
 
 // Issue 3's accuracy figure at a level small enough for a test: agreement of the two backends on (triangle, direction)
 // pairs, leaving out pairs within 2 degrees of grazing. The issue's target is 99.5% (bench_visibility accuracy prints
-// it on every part); measured at level 2 now: CTC 1 0.972, ktoolcav 0.992, mount_rush 0.979. Until the target is
-// reached this guards what we have: two independent answers that agree on all but a few percent of the pairs.
+// it on every part at level 4, bench_visibility judge asks the exact oracle who is right where they differ); measured
+// at level 2: CTC 1 0.99986, ktoolcav 0.99906, mount_rush 0.99778 (before the render backend's ray fallback and the
+// ray backend's edge-end samples: 0.972, 0.992, 0.979).
 TEST(Backends, RayAndRenderMostlyAgreeOnRealParts) {
   for (const std::string name : {"nist_ctc_01_asme1_rd.stp", "ktoolcav.stl", "mount_rush.stl"}) {
     LoadOptions load;
@@ -93,7 +94,7 @@ TEST(Backends, RayAndRenderMostlyAgreeOnRealParts) {
     }
     const double agreement = 1.0 - static_cast<double>(differ) / compared;
     std::printf("%-26s %lld pairs compared, agreement %.5f\n", name.c_str(), compared, agreement);
-    EXPECT_GE(agreement, 0.965) << name;
+    EXPECT_GE(agreement, 0.995) << name;
   }
 }
 

@@ -23,7 +23,7 @@ struct VisibilityOptions {
   VisibilityBackend backend = VisibilityBackend::Ray;
   bool side_correction = true;
   RenderVisibilityOptions render;
-  RayVisibilityOptions ray = withEdgeRefinement();  // closer to "some point visible" than the bare samples
+  RayVisibilityOptions ray = defaultRayOptions();  // closer to "some point visible" than the bare samples
   int threads = 0;                     // 0 = every hardware thread
 };
 

@@ -127,7 +127,7 @@ Prepared prepare(const Mesh& mesh, int samples) {
   p.nx.resize(n);
   p.ny.resize(n);
   p.nz.resize(n);
-  p.origins.assign(samples, std::vector<Float3>(n));
+  p.origins.assign(kMaxSamples, std::vector<Float3>(n));  // every sample: the rescue pass uses them all
   for (int i = 0; i < n; ++i) {
     const int t = p.triangle[i];
     const Vec3 normal = triangleNormal(mesh, t);
@@ -135,7 +135,7 @@ Prepared prepare(const Mesh& mesh, int samples) {
     p.ny[i] = normal.y();
     p.nz[i] = normal.z();
     const Vec3 a = mesh.corner(t, 0) - centre, b = mesh.corner(t, 1) - centre, c = mesh.corner(t, 2) - centre;
-    for (int s = 0; s < samples; ++s) {
+    for (int s = 0; s < kMaxSamples; ++s) {
       const double* w = kSampleWeights[s];
       const Vec3 o = w[0] * a + w[1] * b + w[2] * c + lift * normal;
       p.origins[s][i] = {float(o.x()), float(o.y()), float(o.z())};

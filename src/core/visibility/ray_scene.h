@@ -29,7 +29,7 @@ struct WalkTriangle {
 // sees the triangles in that order too: its primitive ids, the occluders and the walk all speak in positions, so
 // the occluders of neighbouring rays sit close in memory.
 struct Prepared {
-  int samples = 1;
+  int samples = 1;                           // sample passes per direction
   std::vector<Float3> vertices;              // relative to the box centre: exactly what Embree sees
   std::vector<Triangle> corners;             // by triangle index, as in the mesh
   std::vector<WalkTriangle> walk;            // by position
@@ -37,7 +37,8 @@ struct Prepared {
   std::vector<int> position;                 // position of each triangle index
   double lift = 0;                           // of every ray origin off its triangle, along the normal
   std::vector<double> nx, ny, nz;            // unit outward normals by position (zero when degenerate)
-  std::vector<std::vector<Float3>> origins;  // origins[s][i]: sample s by position, relative to the centre, lifted
+  std::vector<std::vector<Float3>> origins;  // origins[s][i]: sample s < kMaxSamples by position, relative to the
+                                             // centre, lifted
 
   int size() const { return static_cast<int>(triangle.size()); }
 };
