@@ -3,7 +3,8 @@
 //     part: triangles, levels, rings of the centre regions (machinable contours, offset), seconds, contours/s,
 //     cutting and rapid length. The 122k-triangle STL is the "100k triangles, 1 mm, at most 5 s" figure.
 //  2. the whole stage as `art2part plan` runs it (visibility at level 3, 3-axis setups, roughing with the tools' own
-//     step-downs and rest passes), judged by the verification: gouges, collisions, stock removed, leftover.
+//     step-downs and rest passes), judged by the verification: gouges, collisions, stock removed, leftover; once
+//     3-axis and once with 5-axis voxel roughing after each setup's 3-axis operations (the same setups), side by side.
 //   bench_roughing [PART]   (a file name in shared/parts; default all)
 #include <chrono>
 #include <cstdio>
@@ -51,13 +52,12 @@ void benchOneSetup(const std::string& name, const Part& part, const ToolLibrary&
               op.rapid_mm, op.path.size());
 }
 
-void benchPlan(const std::string& name, const Part& part, const ToolLibrary& library) {
-  VisibilityOptions visibility_options;
-  visibility_options.level = 3;
-  const VisibilityResult visibility = analyseVisibility(part, visibility_options);
-  const SetupPlan setups = planSetups(part, visibility);
+void benchPlan(const std::string& name, const Part& part, const SetupPlan& setups, const ToolLibrary& library,
+               bool five_axis) {
+  RoughingOptions options;
+  options.five_axis = five_axis;
   auto start = std::chrono::steady_clock::now();
-  const RoughingPlan plan = planRoughing(part, setups, library);
+  const RoughingPlan plan = planRoughing(part, setups, library, options);
   const double seconds = secondsSince(start);
   Toolpath path;
   std::vector<Tool> tools;
@@ -76,7 +76,8 @@ void benchPlan(const std::string& name, const Part& part, const ToolLibrary& lib
   }
   const VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, path, tools);
   const double material = report.stock_volume_mm3 - report.part_volume_mm3;
-  std::printf("%-46s %3zu %3zu %7.1f %9.0f %7.0f %3d %3d %6.1f%% %9.0f %6.2f  %s\n", name.c_str(), setups.setups.size(),
+  std::printf("%-40s %-5s %3zu %3zu %7.1f %9.0f %7.0f %3d %3d %6.1f%% %9.0f %6.2f  %s\n", name.c_str(),
+              five_axis ? "5axis" : "3axis", setups.setups.size(),
               plan.operations.size(), seconds, feed, estimate, report.gouges, report.collisions,
               100.0 * report.removed_volume_mm3 / std::max(material, 1e-9), report.leftover_volume_mm3,
               report.leftover_max_mm, used.c_str());
@@ -99,8 +100,13 @@ int main(int argc, char** argv) {
   for (std::size_t i = 0; i < parts.size(); ++i) benchOneSetup(parts[i], loaded[i], library);
 
   std::printf("\nthe stage: level-3 visibility, 3-axis setups, roughing + rest passes, verified\n");
-  std::printf("%-46s %3s %3s %7s %9s %7s %3s %3s %7s %9s %6s  %s\n", "part", "set", "ops", "plan s", "cut mm",
-              "est s", "gou", "col", "removed", "left mm3", "max", "tools");
-  for (std::size_t i = 0; i < parts.size(); ++i) benchPlan(parts[i], loaded[i], library);
+  std::printf("%-40s %-5s %3s %3s %7s %9s %7s %3s %3s %7s %9s %6s  %s\n", "part", "mode", "set", "ops", "plan s",
+              "cut mm", "est s", "gou", "col", "removed", "left mm3", "max", "tools");
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    VisibilityOptions visibility_options;
+    visibility_options.level = 3;
+    const SetupPlan setups = planSetups(loaded[i], analyseVisibility(loaded[i], visibility_options));
+    for (bool five_axis : {false, true}) benchPlan(parts[i], loaded[i], setups, library, five_axis);
+  }
   return 0;
 }

@@ -25,6 +25,10 @@ struct BodyZone {
 // wide as the wider: one offset instead of one per step, at the price of a few mm of reach under it).
 std::vector<BodyZone> bodyZones(const Tool& tool);
 
+// The region grown by at least `radius` for keeping a shank or holder clear: simplified and offset with coarse chords
+// (50 um each, paid for by 0.1 mm more radius), several times faster than an exact offset by a large radius.
+Region growForBody(const Region& region, double radius);
+
 // Stock left in a slab [z, top] by the levels above (part section included).
 struct StockLeft {
   double top = 0;

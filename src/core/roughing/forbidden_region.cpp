@@ -34,6 +34,11 @@ void append(Region& to, const Region& from) { to.insert(to.end(), from.begin(), 
 
 }  // namespace
 
+Region growForBody(const Region& region, double radius) {
+  if (region.empty()) return {};
+  return offsetRegion(simplifyRegion(region, kBodyTolerance), radius + 2 * kBodyTolerance, kBodyTolerance);
+}
+
 ForbiddenRegion::ForbiddenRegion(const ShadowStack& shadows, double cutter_radius, const std::vector<BodyZone>& zones,
                                  double holder_margin, bool stock_left)
     : shadows_(shadows) {

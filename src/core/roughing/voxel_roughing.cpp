@@ -7,6 +7,7 @@
 
 #include "art2part/geometry/adjacency.h"
 #include "art2part/roughing/cone_thinning.h"
+#include "art2part/roughing/forbidden_region.h"
 #include "art2part/roughing/point_cones.h"
 #include "art2part/roughing/shadow.h"
 #include "art2part/roughing/slicing.h"
@@ -58,12 +59,12 @@ struct Context {
   }
 };
 
-Region partInSlab(const Part& part, const Adjacency& adjacency, const SetupFrame& f, double z, double top,
-                  double allowance) {
+// The part's section in [z, top], sampled at its ends and middle, grown by the allowance.
+Region partInSlab(const Part& part, const Adjacency& adjacency, const SetupFrame& f, double z, double top) {
   Region section;
   for (const double h : {z + 1e-3, 0.5 * (z + top), top - 1e-3})
     section = unite(section, sliceRegion(sliceMesh(part.mesh, adjacency, f.origin, f.x, f.y, f.z, h)));
-  return offsetRegion(section, allowance);
+  return section;
 }
 
 double bodyRadius(const Tool& tool, bool holder) {
@@ -73,27 +74,54 @@ double bodyRadius(const Tool& tool, bool holder) {
   return r;
 }
 
-// The 3-axis slabs cut into layers at most 0.8 of the tool's diameter thick: a leaning tool cuts an inclined band
-// about its diameter high, not a slab's whole depth.
+// Layers about 0.8 of the tool's diameter thick: a leaning tool cuts an inclined band about its diameter high. The
+// 3-axis operations' slabs (1 mm apart where a rest pass re-roughed) are merged up to that thickness, their leftovers
+// united, or a thicker one is cut into layers.
 void buildSlabs(Context& c, const std::vector<SlabState>& left, const Tool& tool) {
   const Adjacency adjacency = buildAdjacency(c.part.mesh);
+  const double thickness = 0.8 * tool.diameter;
+  std::vector<const SlabState*> order;
+  for (const SlabState& s : left) order.push_back(&s);
+  std::sort(order.begin(), order.end(), [](const SlabState* a, const SlabState* b) { return a->z > b->z; });
   double top = -1e300;
-  for (const SlabState& s : left) {
-    top = std::max(top, s.top);
-    const int layers = std::max(1, static_cast<int>(std::ceil((s.top - s.z) / (0.8 * tool.diameter) - 1e-9)));
-    for (int i = 0; i < layers; ++i) {
-      Slab slab;
-      slab.z = s.z + i * (s.top - s.z) / layers;
-      slab.top = s.z + (i + 1) * (s.top - s.z) / layers;
-      slab.remaining = s.remaining;
-      if (!regionEmpty(s.remaining)) {
-        slab.part = partInSlab(c.part, adjacency, c.setup.frame, slab.z, slab.top, c.options.allowance);
-        slab.material = dropSlivers(subtract(s.remaining, slab.part), 1.0);
-      }
-      slab.near_shank = offsetRegion(slab.material, bodyRadius(tool, false) + c.options.holder_margin);
-      slab.near_holder = offsetRegion(slab.material, bodyRadius(tool, true) + c.options.holder_margin);
-      c.slabs.push_back(std::move(slab));
+  auto add = [&](double z, double slab_top, Region remaining, Region part) {
+    Slab slab;
+    slab.z = z;
+    slab.top = slab_top;
+    slab.remaining = std::move(remaining);
+    if (!regionEmpty(slab.remaining)) {
+      slab.part = offsetRegion(part, c.options.allowance);
+      slab.material = dropSlivers(subtract(slab.remaining, slab.part), 1.0);
     }
+    slab.near_shank = growForBody(slab.material, bodyRadius(tool, false) + c.options.holder_margin);
+    slab.near_holder = growForBody(slab.material, bodyRadius(tool, true) + c.options.holder_margin);
+    c.slabs.push_back(std::move(slab));
+  };
+  for (std::size_t i = 0; i < order.size();) {
+    const SlabState& s = *order[i];
+    top = std::max(top, s.top);
+    if (s.top - s.z > thickness) {  // thick: cut into layers
+      const int layers = static_cast<int>(std::ceil((s.top - s.z) / thickness - 1e-9));
+      for (int k = 0; k < layers; ++k) {
+        const double z = s.z + k * (s.top - s.z) / layers, slab_top = s.z + (k + 1) * (s.top - s.z) / layers;
+        add(z, slab_top, s.remaining,
+            regionEmpty(s.remaining) ? Region{} : partInSlab(c.part, adjacency, c.setup.frame, z, slab_top));
+      }
+      ++i;
+      continue;
+    }
+    // Thin: merged with those below while the layer stays thin enough.
+    Region remaining, part;
+    double z = s.z;
+    std::size_t j = i;
+    for (; j < order.size() && s.top - order[j]->z <= thickness + 1e-9; ++j) {
+      z = order[j]->z;
+      if (regionEmpty(order[j]->remaining)) continue;
+      remaining = unite(remaining, order[j]->remaining);
+      part = unite(part, partInSlab(c.part, adjacency, c.setup.frame, order[j]->z, order[j]->top));
+    }
+    add(z, s.top, std::move(remaining), std::move(part));
+    i = j;
   }
   std::sort(c.slabs.begin(), c.slabs.end(), [](const Slab& a, const Slab& b) { return a.z > b.z; });
   c.clearance_z = top + c.options.clearance;
@@ -165,15 +193,10 @@ Standing standingMaterial(const Context& c, const Slab& slab, const std::array<R
   for (int k = 0; k < kLayers; ++k) left[k] = subtract(slab.material, cut[k]);
   auto zone = [&](double from, double to, double radius) {
     Standing::Zone z{from, to, {}};
-    for (int k = 0; k < kLayers; ++k) z.near[k] = offsetRegion(left[k], radius + margin);
+    for (int k = 0; k < kLayers; ++k) z.near[k] = growForBody(left[k], radius + margin);
     standing.zones.push_back(std::move(z));
   };
-  zone(tool.flute_length, tool.stickout, tool.shank_diameter / 2);
-  double from = tool.stickout;
-  for (const HolderStep& step : tool.holder) {
-    zone(from, from + step.length, step.diameter / 2);
-    from += step.length;
-  }
+  for (const BodyZone& body : bodyZones(tool)) zone(body.from, body.to, body.radius);
   return standing;
 }
 
