@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <random>
 #include <string>
 #include <utility>
@@ -67,6 +68,28 @@ void speed(const std::string& only) {
   std::printf("  naive loop extrapolated to %d directions: %.1f s\n", D, s * D / 64.0);
 }
 
+// Every triangle split in four at its edges' midpoints (shared between neighbours): the same shape, 4x the triangles.
+Mesh subdivided(const Mesh& in) {
+  Mesh out;
+  out.vertices = in.vertices;
+  std::map<std::pair<int, int>, int> middle;
+  auto mid = [&](int a, int b) {
+    const std::pair<int, int> key(std::min(a, b), std::max(a, b));
+    const auto it = middle.find(key);
+    if (it != middle.end()) return it->second;
+    out.vertices.push_back(0.5 * (in.vertices[a] + in.vertices[b]));
+    return middle[key] = static_cast<int>(out.vertices.size()) - 1;
+  };
+  for (const Triangle& t : in.triangles) {
+    const int ab = mid(t[0], t[1]), bc = mid(t[1], t[2]), ca = mid(t[2], t[0]);
+    out.triangles.push_back({t[0], ab, ca});
+    out.triangles.push_back({ab, t[1], bc});
+    out.triangles.push_back({ca, bc, t[2]});
+    out.triangles.push_back({ab, bc, ca});
+  }
+  return out;
+}
+
 void scaling() {
   std::printf("scaling: triangles (STEP tessellated finer) and directions (sphere level), default ray backend\n");
   const DirectionSet set = sampleSphere(4);
@@ -79,6 +102,15 @@ void scaling() {
               part.mesh.triangleCount(), set.size(), s);
   }
   const Part part = loadPart(kParts + "/nist_ctc_02_asme1_rc_fine_tess.stl");
+  // Triangles over a wider range: CTC-01 (6.7k), the fine STL (122k), the fine STL subdivided (489k), level 3.
+  const DirectionSet level3 = sampleSphere(3);
+  const Mesh small = loadPart(kParts + "/nist_ctc_01_asme1_rd.stp").mesh, large = subdivided(part.mesh);
+  for (const auto& [name, mesh] : {std::pair<const char*, const Mesh*>{"CTC 1, level 3", &small},
+                                   {"fine tessellation, level 3", &part.mesh},
+                                   {"fine tessellation split in 4, level 3", &large}}) {
+    const double s = secondsOf([&] { rayVisibility(*mesh, level3.directions, defaultRayOptions()); });
+    printRate(name, mesh->triangleCount(), level3.size(), s);
+  }
   for (int level : {3, 4, 5}) {
     const DirectionSet dirs = sampleSphere(level);
     const double s = secondsOf([&] { rayVisibility(part.mesh, dirs.directions, defaultRayOptions()); });
