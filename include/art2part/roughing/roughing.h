@@ -35,7 +35,7 @@ struct RoughingOptions {
   int rest_passes = 1;          // at most this many, each tool at most half the previous one
   // mm between a rest pass's levels (its tool's own step-down when that is less): re-roughing at fine levels takes
   // the stairs that big steps leave on faces at a slant to the direction, and cuts little elsewhere.
-  double rest_stepdown = 1.0;
+  double rest_stepdown = 2.0;
   double tool_area_fraction = 0.85;  // the largest tool clearing at least this fraction of the best area
   double rapid_mm_min = 10000;  // for time estimates
   // 5-axis voxel roughing after each setup's 3-axis operations (voxel_roughing.h).
