@@ -32,7 +32,7 @@ struct RoughingOptions {
   double critical_angle_deg = 0.5;  // a flat face within this of square to the direction gets a level
   std::string tool;             // a tool id to use instead of choosing; empty = choose
   bool rest_pass = true;        // smaller tools over what the first left
-  int rest_passes = 1;          // at most this many, each tool at most half the previous one
+  int rest_passes = 2;          // at most this many, each tool at most half the previous one (20 -> 10 -> 4 mm)
   // mm between a rest pass's levels (its tool's own step-down when that is less): re-roughing at fine levels takes
   // the stairs that big steps leave on faces at a slant to the direction, and cuts little elsewhere.
   double rest_stepdown = 2.0;
