@@ -158,8 +158,8 @@ RoughingOperation roughSetup(const Part& part, const Setup& setup, int setup_ind
   clearing.ramp_angle_deg = options.ramp_angle_deg;
   clearing.clearance_z = g.stock_top + options.clearance;
 
-  // Shadows at the levels only: a body zone's bottom between two levels takes the shadow of the level below it, a
-  // little more part (at most one step-down of it) than it needs, for a third of the sweep's work.
+  // Shadows at the levels only: the body zones keep clear of the stock left above, which holds the part's sections,
+  // so no zone bottom needs a shadow of its own.
   std::vector<double> heights;
   for (const RoughingLevel& l : levels) heights.push_back(l.z);
   const ShadowStack shadows(g.part, part.mesh.triangles, heights);

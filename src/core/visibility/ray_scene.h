@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "art2part/geometry/mesh.h"
@@ -49,6 +50,25 @@ Prepared prepare(const Mesh& mesh, int samples);
 // A ray origin just inside edge k (corners k, k + 1) of the triangle at position i, a fraction `along` of the way
 // from corner k, lifted like the samples.
 Float3 edgeSample(const Prepared& p, int i, int k, double along);
+
+// An occlusion ray from `origin` (relative to the box centre, like the scene) along d, to infinity, with the id the
+// filter files its occluder under.
+inline RTCRay occlusionRay(const Float3& origin, const Vec3& d, unsigned id) {
+  RTCRay ray;
+  ray.org_x = origin[0];
+  ray.org_y = origin[1];
+  ray.org_z = origin[2];
+  ray.tnear = 0.0f;
+  ray.dir_x = static_cast<float>(d.x());
+  ray.dir_y = static_cast<float>(d.y());
+  ray.dir_z = static_cast<float>(d.z());
+  ray.time = 0.0f;
+  ray.tfar = std::numeric_limits<float>::infinity();
+  ray.mask = ~0u;
+  ray.id = id;
+  ray.flags = 0;
+  return ray;
+}
 
 // Follows the ray over the surface from the triangle at position t, crossing to the neighbour beyond whichever edge
 // the ray passes outside of, and returns the position of a triangle the ray clearly passes through in front of its

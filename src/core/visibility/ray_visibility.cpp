@@ -215,20 +215,8 @@ class Tracer {
   }
 
   void addRay(const Float3& origin, const Vec3& d, int position) {
-    RTCRay ray;
-    ray.org_x = origin[0];
-    ray.org_y = origin[1];
-    ray.org_z = origin[2];
-    ray.tnear = 0.0f;
-    ray.dir_x = static_cast<float>(d.x());
-    ray.dir_y = static_cast<float>(d.y());
-    ray.dir_z = static_cast<float>(d.z());
-    ray.time = 0.0f;
-    ray.tfar = std::numeric_limits<float>::infinity();
-    ray.mask = ~0u;
-    ray.id = static_cast<unsigned>(position);  // where the filter records the occluder
-    ray.flags = 0;
-    rays_.push_back(ray);
+    // The id is where the filter records the occluder.
+    rays_.push_back(raycast::occlusionRay(origin, d, static_cast<unsigned>(position)));
   }
 
   void trace() {

@@ -108,20 +108,7 @@ struct RayFallback::Tracer::State {
   }
 
   void add(const Float3& origin, const Vec3& d, int owner) {
-    RTCRay ray;
-    ray.org_x = origin[0];
-    ray.org_y = origin[1];
-    ray.org_z = origin[2];
-    ray.tnear = 0.0f;
-    ray.dir_x = static_cast<float>(d.x());
-    ray.dir_y = static_cast<float>(d.y());
-    ray.dir_z = static_cast<float>(d.z());
-    ray.time = 0.0f;
-    ray.tfar = std::numeric_limits<float>::infinity();
-    ray.mask = ~0u;
-    ray.id = 0;
-    ray.flags = 0;
-    rays.push_back(ray);
+    rays.push_back(raycast::occlusionRay(origin, d, 0));
     owners.push_back(owner);
   }
 
