@@ -76,6 +76,7 @@ nlohmann::json verificationJson(const VerificationReport& report) {
           {"leftover_volume_mm3", report.leftover_volume_mm3},
           {"leftover_max_mm", report.leftover_max_mm},
           {"resolution_mm", report.resolution_mm},
+          {"open_mesh_closed_edges", report.closed_open_mesh_edges},
           {"seconds", report.seconds_total}};
 }
 
@@ -268,6 +269,9 @@ int runPlan(const std::vector<std::string>& args) {
   std::cout << "part:         " << path << " (" << part.mesh.triangleCount() << " triangles, "
             << visibility.directions.size() << " directions)\n"
             << setupPlanText(part, plan, visibility.directions);
+  if (roughing.closed_open_mesh_edges > 0)
+    std::cout << "solid:        the mesh is open (" << roughing.closed_open_mesh_edges
+              << " boundary edges): roughed and simulated as the solid between it and a floor on its open side\n";
   for (int i = 0; i < static_cast<int>(roughing.operations.size()); ++i) {
     const RoughingOperation& op = roughing.operations[i];
     std::cout << "operation " << i << ":  " << op.kind << ", setup " << op.setup << ", tool " << op.tool << ", "

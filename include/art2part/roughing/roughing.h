@@ -68,6 +68,7 @@ struct RoughingPlan {
   std::vector<RoughingOperation> operations;
   double seconds = 0;
   int contours = 0;           // rings of centre regions over all levels
+  int closed_open_mesh_edges = 0;  // the part's mesh was open: the edges of its boundary, closed (solid_closure.h)
 };
 
 // One operation: `tool` clears the stock of one setup top-down; `before`, if given, is what a previous operation
@@ -91,7 +92,7 @@ std::vector<const Tool*> roughingTools(const ToolLibrary& library);
 const Tool* chooseRoughingTool(const Part& part, const Setup& setup, const std::vector<const Tool*>& candidates,
                                const RoughingOptions& options);
 
-// Every setup, main and rest operations. Throws InputError for a tool id that the library lacks or that cannot rough.
+// Every setup, main and rest operations, on machiningSolid(part). Throws InputError for a tool id that the library lacks or that cannot rough.
 RoughingPlan planRoughing(const Part& part, const SetupPlan& setups, const ToolLibrary& library,
                           const RoughingOptions& options = {});
 

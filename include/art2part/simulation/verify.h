@@ -72,6 +72,7 @@ struct VerificationReport {
   double seconds_sweep = 0, seconds_total = 0, moves_per_second = 0;
   Box stock_box;
   double stock_volume_mm3 = 0, removed_volume_mm3 = 0, remaining_volume_mm3 = 0, part_volume_mm3 = 0;
+  int closed_open_mesh_edges = 0;  // the part's mesh was open: its boundary chain's edges, closed as solid_closure.h says
 
   bool passed() const { return gouges == 0 && collisions == 0; }
 };

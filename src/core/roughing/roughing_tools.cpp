@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "art2part/geometry/solid_closure.h"
 #include "art2part/roughing/forbidden_region.h"
 #include "art2part/roughing/roughing.h"
 #include "art2part/roughing/shadow.h"
@@ -88,10 +89,15 @@ bool cuts(const RoughingOperation& op) {
 
 }  // namespace
 
-RoughingPlan planRoughing(const Part& part, const SetupPlan& setups, const ToolLibrary& library,
+RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const ToolLibrary& library,
                           const RoughingOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   RoughingPlan plan;
+  // An open mesh is roughed as the solid it closes (solid_closure.h), which the simulation checks against too:
+  // otherwise every setup from its open side would clear up to the surface's back.
+  SolidClosure closure;
+  const Part part = machiningSolid(given, &closure);
+  plan.closed_open_mesh_edges = closure.boundary_edges;
   const std::vector<const Tool*> candidates = roughingTools(library);
   const Tool* forced = nullptr;
   if (!options.tool.empty()) {

@@ -62,6 +62,7 @@ std::string reportJson(const VerificationReport& r) {
   j["collision_list"] = list(r.collision_list, collisionJson);
   j["leftover_regions"] = list(r.regions, regionJson);
   j["leftover_region_count"] = r.region_count;
+  j["open_mesh_closed_edges"] = r.closed_open_mesh_edges;
   j["face_cusps"] = list(r.faces, faceJson);
   j["face_cusp_count"] = r.face_count;
   j["tolerance_mm"] = r.tolerance_mm;

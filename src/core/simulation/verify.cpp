@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 
+#include "art2part/geometry/solid_closure.h"
 #include "art2part/simulation/mesh_dexels.h"
 #include "art2part/simulation/part_distance.h"
 
@@ -77,12 +78,17 @@ double automaticResolution(const Box& box) {
   return std::max(kFinestAutomatic, std::sqrt(area / kAutomaticRays));
 }
 
-VerificationReport verifyToolpath(const Mesh& part, const std::vector<int>& triangle_face, const Toolpath& path,
+VerificationReport verifyToolpath(const Mesh& part_mesh, const std::vector<int>& part_faces, const Toolpath& path,
                                   const std::vector<Tool>& tools, const VerifyOptions& options,
                                   VerificationState* state) {
   const auto start = std::chrono::steady_clock::now();
   if (path.empty()) throw InputError("verify: the toolpath has no points");
-  if (part.triangles.empty()) throw InputError("verify: the part has no triangles");
+  if (part_mesh.triangles.empty()) throw InputError("verify: the part has no triangles");
+  // An open mesh bounds no solid: the part is its closure (solid_closure.h), as the roughing plans against.
+  SolidClosure closure = closeOpenMesh(part_mesh);
+  const Mesh& part = closure.mesh;
+  std::vector<int> triangle_face = part_faces;
+  triangle_face.resize(part.triangles.size(), -1);
   if (!(options.tolerance >= 0.0)) throw InputError("verify: the tolerance must not be negative");
   const Box part_box = boundingBox(part);
   const Box box = options.stock_mesh ? unite(boundingBox(*options.stock_mesh), part_box)
@@ -95,6 +101,7 @@ VerificationReport verifyToolpath(const Mesh& part, const std::vector<int>& tria
 
   VerificationReport r;
   r.resolution_mm = resolution;
+  r.closed_open_mesh_edges = closure.boundary_edges;
   r.tolerance_mm = options.tolerance;
   r.spacing = lattice.spacing;
   r.dexels = lattice.totalRays();
