@@ -50,27 +50,32 @@ const Tool* chooseRoughingTool(const Part& part, const Setup& setup, const std::
     top = std::max(top, p.z());
     bottom = std::min(bottom, p.z());
   }
-  // Eight levels evenly down the stock; shadows there and every 2 mm above them (for the shanks and holders).
-  const int n = 8;
-  std::vector<double> zs, heights;
-  std::vector<Region> stocks;
-  double above = top;
-  for (int i = 1; i <= n; ++i) {
-    const double z = top - (top - bottom) * i / (n + 0.5);
-    zs.push_back(z);
-    stocks.push_back(stockSlabRegion(stock.vertices, stock.triangles, z, above));
-    above = z;
+  // Eight levels evenly down the stock, and where they see nothing for any tool (a setup from the side of a long
+  // part: the first is already deeper than any tool reaches), eight evenly down the first of them.
+  for (const double depth : {top - bottom, (top - bottom) / 8.5}) {
+    const int n = 8;
+    std::vector<double> zs, heights;
+    std::vector<Region> stocks;
+    double above = top;
+    for (int i = 1; i <= n; ++i) {
+      const double z = top - depth * i / (n + 0.5);
+      zs.push_back(z);
+      stocks.push_back(stockSlabRegion(stock.vertices, stock.triangles, z, above));
+      above = z;
+    }
+    // Shadows at the levels and every 2 mm above them (for the shanks and holders).
+    for (double h = zs.back(); h <= top; h += 2) heights.push_back(h);
+    heights.insert(heights.end(), zs.begin(), zs.end());
+    const ShadowStack shadows(vertices, part.mesh.triangles, heights);
+    // The reference is what the smallest tool sweeps (a smaller tool reaches at least as far, up to its shorter
+    // reach); then the largest that sweeps the fraction of it. Two or three evaluations on most parts.
+    const double best = sweptArea(*candidates.back(), zs, shadows, stocks, options);
+    if (best <= 0) continue;
+    for (const Tool* tool : candidates)
+      if (sweptArea(*tool, zs, shadows, stocks, options) >= options.tool_area_fraction * best) return tool;
+    return candidates.back();
   }
-  for (double h = zs.back(); h <= top; h += 2) heights.push_back(h);
-  heights.insert(heights.end(), zs.begin(), zs.end());
-  const ShadowStack shadows(vertices, part.mesh.triangles, heights);
-  // The reference is what the smallest tool sweeps (a smaller tool reaches at least as far, up to its shorter
-  // reach); then the largest that sweeps the fraction of it. Two or three evaluations on most parts.
-  const double best = sweptArea(*candidates.back(), zs, shadows, stocks, options);
-  if (best <= 0) return nullptr;
-  for (const Tool* tool : candidates)
-    if (sweptArea(*tool, zs, shadows, stocks, options) >= options.tool_area_fraction * best) return tool;
-  return candidates.back();
+  return nullptr;
 }
 
 namespace {
