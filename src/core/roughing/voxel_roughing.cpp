@@ -4,6 +4,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include "art2part/geometry/adjacency.h"
 #include "art2part/roughing/cone_thinning.h"
@@ -178,25 +179,48 @@ struct Standing {
     double from = 0, to = 0;                 // heights above the tip
     std::array<Region, kLayers> near;        // per sub-layer: what stands there, grown by the zone's radius + margin
   };
-  std::vector<Zone> zones;                   // shank, then each holder step
+  std::vector<Zone> zones;                   // shank, then each holder step, those starting within `inside`
   double z = 0, thickness = 0;
+  double inside = 0;                         // the most the body stays in the slab at the reach's tilt, above the tip
 };
 
 // `cut` per sub-layer: where earlier rows' flutes passed at that height (a tool leaning far over cuts an inclined
-// band, not the slab's whole column under its tip).
-Standing standingMaterial(const Context& c, const Slab& slab, const std::array<Region, kLayers>& cut, const Tool& tool) {
+// band, not the slab's whole column under its tip). Only what stands near `row` counts: clearOfStanding looks at the
+// body while it is inside the slab, at most thickness x tan(max tilt) sideways from a tip, so the material is cut to
+// the row's box grown by that and the widest zone's radius (the same answers there, a fraction of the work).
+Standing standingMaterial(const Context& c, const Slab& slab, const std::array<Region, kLayers>& cut, const Tool& tool,
+                          const std::vector<Voxel>& row) {
   Standing standing;
   standing.z = slab.z;
   standing.thickness = slab.top - slab.z;
   const double margin = c.options.holder_margin;
-  std::array<Region, kLayers> left;
-  for (int k = 0; k < kLayers; ++k) left[k] = subtract(slab.material, cut[k]);
-  auto zone = [&](double from, double to, double radius) {
-    Standing::Zone z{from, to, {}};
-    for (int k = 0; k < kLayers; ++k) z.near[k] = growForBody(left[k], radius + margin);
+  const double tan_tilt = std::tan(std::min(c.options.max_tilt_deg, 85.0) * kPi / 180);
+  // A zone starting higher above the tip than the body stays in the slab (thickness / cos(max tilt)) is never looked
+  // at: the library's flutes are longer than that, so a slab 0.8 D thick usually needs none.
+  const double inside = standing.inside = standing.thickness * std::sqrt(1 + tan_tilt * tan_tilt);
+  std::vector<BodyZone> zones;
+  double widest = 0;
+  for (const BodyZone& body : bodyZones(tool))
+    if (body.from <= inside) {
+      zones.push_back(body);
+      widest = std::max(widest, body.radius);
+    }
+  if (zones.empty()) return standing;
+  const double reach = standing.thickness * tan_tilt + widest + margin + 1.0;
+  Point2 lo(1e300, 1e300), hi(-1e300, -1e300);
+  for (const Voxel& v : row) {
+    lo = lo.cwiseMin(v.xy);
+    hi = hi.cwiseMax(v.xy);
+  }
+  const Region window = regionFromPolygons({{Point2(lo.x() - reach, lo.y() - reach), Point2(hi.x() + reach, lo.y() - reach),
+                                             Point2(hi.x() + reach, hi.y() + reach), Point2(lo.x() - reach, hi.y() + reach)}});
+  const Region material = intersect(slab.material, window);
+  for (const BodyZone& body : zones) {
+    Standing::Zone z{body.from, body.to, {}};
+    for (int k = 0; k < kLayers; ++k)
+      z.near[k] = growForBody(subtract(material, intersect(cut[k], window)), body.radius + margin);
     standing.zones.push_back(std::move(z));
-  };
-  for (const BodyZone& body : bodyZones(tool)) zone(body.from, body.to, body.radius);
+  }
   return standing;
 }
 
@@ -207,6 +231,7 @@ int layerOf(const Standing& standing, double z) {
 
 bool clearOfStanding(const Standing& standing, const Slab& slab, const Vec3& tip_frame, const Vec3& axis_frame) {
   const double leaves = axis_frame.z() > 1e-6 ? (slab.top - tip_frame.z()) / axis_frame.z() : 1e300;
+  if (leaves > standing.inside + 1e-9) return false;  // a posture beyond what the zones were chosen for: refused
   for (const Standing::Zone& zone : standing.zones)
     for (double h = zone.from; h <= std::min(zone.to, leaves); h += 1.0) {
       const Vec3 at = tip_frame + h * axis_frame;
@@ -232,9 +257,23 @@ void addCut(std::array<std::vector<Ring>, kLayers>& discs, const Slab& slab, con
   }
 }
 
+// The standing material of a row, worked out when a voxel of the row first needs it.
+struct LazyStanding {
+  const Context& c;
+  const Slab& slab;
+  const std::array<Region, kLayers>& cut;
+  const Tool& tool;
+  const std::vector<Voxel>& row;
+  std::optional<Standing> standing;
+  const Standing& get() {
+    if (!standing) standing = standingMaterial(c, slab, cut, tool, row);
+    return *standing;
+  }
+};
+
 // 4.1.3: the access direction from the voxel's cone by restricted thinning, checked by the footprint and profiled.
 void orientVoxel(const Context& c, const Tool& tool, std::size_t slab_index, Voxel& v,
-                 const Standing* standing = nullptr) {
+                 LazyStanding* standing = nullptr) {
   v.cone = c.cones.coneAt(v.point, c.all);
   const int d = accessDirection(c.directions, v.cone, &c.reach);
   if (d < 0) return;
@@ -246,7 +285,7 @@ void orientVoxel(const Context& c, const Tool& tool, std::size_t slab_index, Vox
   const Vec3 tip_frame = inFrame(posture.pose.tip - c.setup.frame.origin, c.setup.frame);
   const Vec3 axis_frame = inFrame(posture.pose.axis, c.setup.frame);
   if (!clearOfStockAbove(c, tool, slab_index, tip_frame, axis_frame)) return;
-  if (standing && !clearOfStanding(*standing, c.slabs[slab_index], tip_frame, axis_frame)) return;
+  if (standing && !clearOfStanding(standing->get(), c.slabs[slab_index], tip_frame, axis_frame)) return;
   v.tip = posture.pose.tip;
   v.axis = posture.pose.axis;
   v.live = true;
@@ -434,7 +473,7 @@ RoughingOperation voxelRoughSetup(const Part& part, const Setup& setup, int setu
     level.remaining_mm2 = regionArea(c.slabs[s].material);
     std::array<Region, kLayers> cut;  // where this slab's earlier rows took the flutes, per sub-layer
     for (std::vector<Voxel>& row : sampleRows(c, c.slabs[s], *tool, spacing, tilt)) {
-      const Standing standing = standingMaterial(c, c.slabs[s], cut, *tool);
+      LazyStanding standing{c, c.slabs[s], cut, *tool, row, std::nullopt};
       for (Voxel& v : row) {
         orientVoxel(c, *tool, s, v, &standing);
         if (!v.material) continue;
