@@ -16,7 +16,7 @@ const char* kUsage =
     "  setups PART [--mode 3axis|5axis] [--tilt DEG] [--time-limit S] [--no-pp] [--json] [visibility options]\n"
     "             the fewest setups (minimum cover of the visibility cones), their frames and what each machines\n"
     "  plan PART --out DIR [--mode 3axis|5axis] [--tilt DEG] [--level L] [...setups options] [--tools FILE]\n"
-    "             [--tool ID] [--allowance MM] [--stepdown MM] [--no-rest] [--roughing 3axis|5axis] [--machine FILE]\n"
+    "             [--tool ID] [--allowance MM] [--stepdown MM] [--no-rest] [--whole-stock] [--roughing 3axis|5axis] [--machine FILE]\n"
     "             [--verify-resolution MM]   visibility, setups, roughing, verification and post: DIR/plan.json,\n"
     "             toolpaths.csv, tools.json, program.ngc, setups.png, remaining.png and the visibility files\n"
     "  verify DIR [--part FILE] [--resolution MM] [--tolerance MM] [--stock-margin MM] [--stock FILE]\n"

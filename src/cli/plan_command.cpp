@@ -1,5 +1,5 @@
 // art2part plan PART --out DIR [--mode 3axis|5axis] [--tilt DEG] [--level L] [--time-limit S] [--no-pp]
-//                    [--tools FILE] [--tool ID] [--allowance MM] [--stepdown MM] [--no-rest] [--machine FILE]
+//                    [--tools FILE] [--tool ID] [--allowance MM] [--stepdown MM] [--no-rest] [--whole-stock] [--machine FILE]
 //                    [--verify-resolution MM] [--roughing 3axis|5axis]
 //                    plus the visibility options: the pipeline without ROS. Part -> visibility -> setups -> roughing
 // -> verification -> post. --roughing 5axis (the default with --mode 5axis) adds 5-axis voxel roughing after each
@@ -136,7 +136,8 @@ RoughingOptions roughingOptionsFrom(const Arguments& a) {
   options.allowance = a.number("allowance", options.allowance);
   options.stepdown = a.number("stepdown", options.stepdown);
   options.tool = a.value("tool", "");
-  options.rest_pass = !a.has("no-rest");
+  options.rest_pass = !a.flag("no-rest");
+  options.in_process_stock = !a.flag("whole-stock");
   if (!(options.allowance >= 0) || !(options.stepdown >= 0))
     throw UsageError("--allowance and --stepdown must not be negative");
   // 5-axis voxel roughing after the 3-axis operations: asked for, or implied by 5-axis setups.
@@ -194,6 +195,7 @@ int runPlan(const std::vector<std::string>& args) {
   for (const char* o : {"out", "tools", "tool", "allowance", "stepdown", "machine", "verify-resolution", "roughing"}) options.insert(o);
   std::set<std::string> flags = setupFlags();
   flags.insert("no-rest");
+  flags.insert("whole-stock");
   const Arguments a(args, flags, options);
   const std::string path = a.requirePositional(1, "one part file: art2part plan PART --out DIR");
   if (!a.has("out")) throw UsageError("plan needs --out DIR");

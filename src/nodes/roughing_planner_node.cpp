@@ -116,43 +116,29 @@ class RoughingPlannerNode {
     }
   }
 
-  // planRoughing one setup at a time (the core's tool choice and rest pass, unchanged), with feedback between setups;
-  // operations and setups renumbered as planRoughing over the whole plan numbers them.
+  // planRoughing over every setup (the core's tool choice, rest passes and stock between setups, unchanged), with
+  // feedback before each setup and for each operation planned.
   RoughingPlan roughEachSetup(const Part& part, const SetupPlan& setups, const ToolLibrary& library,
                               const RoughingOptions& options, PlanRoughingFeedback& f) {
-    const auto start = std::chrono::steady_clock::now();
-    RoughingPlan plan;
     const int n = static_cast<int>(setups.setups.size());
     f.stage = "roughing";
     f.setups = static_cast<uint32_t>(n);
-    for (int k = 0; k < n; ++k) {
-      f.setup = static_cast<uint32_t>(k + 1);
-      f.fraction = static_cast<double>(k) / n;
-      feedback(f);
-      SetupPlan one;
-      one.mode = setups.mode;
-      one.max_tilt_deg = setups.max_tilt_deg;
-      one.setups = {setups.setups[k]};
-      RoughingPlan part_plan = planRoughing(part, one, library, options);
-      plan.contours += part_plan.contours;
-      for (RoughingOperation& op : part_plan.operations) {
-        const int index = static_cast<int>(plan.operations.size());
-        op.setup = k;
-        for (CutterLocation& c : op.path) {
-          c.op = index;
-          c.setup = k;
-        }
+    std::size_t reported = 0;  // operations already told of
+    RoughingPlan plan = planRoughing(part, setups, library, options, [&](int k, const RoughingPlan& so_far) {
+      for (; reported < so_far.operations.size(); ++reported) {
+        const RoughingOperation& op = so_far.operations[reported];
         f.levels_done += static_cast<uint32_t>(op.levels.size());
         f.operations += 1;
-        f.operation = "setup " + std::to_string(k) + ": " + op.kind + ", " + op.tool + ", " +
+        f.operation = "setup " + std::to_string(op.setup) + ": " + op.kind + ", " + op.tool + ", " +
                       std::to_string(op.levels.size()) + " levels, " + std::to_string(op.path.size()) + " points";
-        plan.operations.push_back(std::move(op));
       }
-    }
+      f.setup = static_cast<uint32_t>(std::min(k + 1, n));
+      f.fraction = static_cast<double>(k) / std::max(n, 1);
+      feedback(f);
+    });
     f.stage = "done";
     f.fraction = 1;
     server_.publishFeedback(f);
-    plan.seconds = secondsSince(start);
     return plan;
   }
 

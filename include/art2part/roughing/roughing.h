@@ -8,6 +8,7 @@
 // then a rest pass with a smaller tool over what the first left.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,9 @@ struct RoughingOptions {
   double rest_stepdown = 2.0;
   double tool_area_fraction = 0.85;  // the largest tool clearing at least this fraction of the best area
   double rapid_mm_min = 10000;  // for time estimates
+  // Each setup starts from the stock the setups before it left (in_process_stock.h), not from the whole block.
+  bool in_process_stock = true;
+  int in_process_rays = 20000;   // z-rays of its coarse dexel lattice (cells of 0.5 mm at the finest)
   // 5-axis voxel roughing after each setup's 3-axis operations (voxel_roughing.h).
   bool five_axis = false;
   double max_tilt_deg = 60;     // the most the tool leans from the setup direction while cutting
@@ -77,9 +81,11 @@ struct SlabState {
   double z = 0, top = 0;
   Region remaining;           // stock left in the slab [z, top] after the operation (part section included)
 };
+// `in_process`, if given, is the stock as earlier setups left it (the block otherwise).
+class InProcessStock;
 RoughingOperation roughSetup(const Part& part, const Setup& setup, int setup_index, const Tool& tool,
                              const RoughingOptions& options, const std::vector<SlabState>* before = nullptr,
-                             std::vector<SlabState>* after = nullptr);
+                             std::vector<SlabState>* after = nullptr, const InProcessStock* in_process = nullptr);
 
 // The levels of a setup for a tool: stock top down to the stock's bottom, at most `stepdown` apart, plus critical
 // heights; highest first. `frame_vertices` are the part's vertices in the setup frame.
@@ -90,11 +96,14 @@ std::vector<RoughingLevel> roughingLevels(const Part& part, const std::vector<Ve
 // The tools a roughing operation may use (flat and bull end mills), largest first; and the choice for one setup.
 std::vector<const Tool*> roughingTools(const ToolLibrary& library);
 const Tool* chooseRoughingTool(const Part& part, const Setup& setup, const std::vector<const Tool*>& candidates,
-                               const RoughingOptions& options);
+                               const RoughingOptions& options, const InProcessStock* in_process = nullptr);
 
 // Every setup, main and rest operations, on machiningSolid(part). Throws InputError for a tool id that the library lacks or that cannot rough.
+// `progress`, if given, hears of each setup before it is planned (setup index, the plan so far) and of the end (the
+// number of setups, the whole plan).
+using RoughingProgress = std::function<void(int setup, const RoughingPlan& so_far)>;
 RoughingPlan planRoughing(const Part& part, const SetupPlan& setups, const ToolLibrary& library,
-                          const RoughingOptions& options = {});
+                          const RoughingOptions& options = {}, const RoughingProgress& progress = {});
 
 // The stock of the plan in the part frame: the part's box grown by the margin, or the stock mesh.
 Mesh roughingStock(const Part& part, const RoughingOptions& options);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "art2part/roughing/forbidden_region.h"
+#include "art2part/roughing/in_process_stock.h"
 #include "art2part/roughing/shadow.h"
 
 namespace art2part {
@@ -134,7 +135,7 @@ std::vector<RoughingLevel> roughingLevels(const Part& part, const std::vector<Ve
 
 RoughingOperation roughSetup(const Part& part, const Setup& setup, int setup_index, const Tool& tool,
                              const RoughingOptions& options, const std::vector<SlabState>* before,
-                             std::vector<SlabState>* after) {
+                             std::vector<SlabState>* after, const InProcessStock* in_process) {
   const auto start = std::chrono::steady_clock::now();
   RoughingOperation op;
   op.setup = setup_index;
@@ -168,10 +169,18 @@ RoughingOperation roughSetup(const Part& part, const Setup& setup, int setup_ind
   std::vector<SlabState> slabs;
   slabs.reserve(levels.size());  // left_above points into it
   std::vector<StockLeft> left_above;
+  std::vector<Region> in_process_slabs;  // what earlier setups left in each slab
+  if (in_process) {
+    std::vector<std::pair<double, double>> extents;
+    double above = g.stock_top;
+    for (const RoughingLevel& level : levels) extents.emplace_back(level.z, above), above = level.z;
+    in_process_slabs = in_process->slabs(setup.frame, extents);
+  }
   double top = g.stock_top;
   for (RoughingLevel& level : levels) {
     const double z = level.z;
     Region stock = stockSlabRegion(g.stock.vertices, g.stock.triangles, z, top);
+    if (in_process) stock = intersect(stock, in_process_slabs[&level - levels.data()]);
     if (before) {
       const Region* left = beforeRemaining(*before, z, top);
       stock = left ? intersect(stock, *left) : Region{};

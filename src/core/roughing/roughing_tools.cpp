@@ -1,9 +1,11 @@
 // Tool choice for roughing (thesis future work: tool selection) and the stage over every setup.
 #include <algorithm>
 #include <chrono>
+#include <memory>
 
 #include "art2part/geometry/solid_closure.h"
 #include "art2part/roughing/forbidden_region.h"
+#include "art2part/roughing/in_process_stock.h"
 #include "art2part/roughing/roughing.h"
 #include "art2part/roughing/shadow.h"
 #include "art2part/roughing/voxel_roughing.h"
@@ -40,7 +42,7 @@ double sweptArea(const Tool& tool, const std::vector<double>& zs, const ShadowSt
 }  // namespace
 
 const Tool* chooseRoughingTool(const Part& part, const Setup& setup, const std::vector<const Tool*>& candidates,
-                               const RoughingOptions& options) {
+                               const RoughingOptions& options, const InProcessStock* in_process) {
   if (candidates.empty()) return nullptr;
   const std::vector<Vec3> vertices = toFrame(part.mesh.vertices, setup.frame);
   Mesh stock = roughingStock(part, options);
@@ -57,11 +59,17 @@ const Tool* chooseRoughingTool(const Part& part, const Setup& setup, const std::
     std::vector<double> zs, heights;
     std::vector<Region> stocks;
     double above = top;
+    std::vector<std::pair<double, double>> extents;
     for (int i = 1; i <= n; ++i) {
       const double z = top - depth * i / (n + 0.5);
       zs.push_back(z);
       stocks.push_back(stockSlabRegion(stock.vertices, stock.triangles, z, above));
+      extents.emplace_back(z, above);
       above = z;
+    }
+    if (in_process) {
+      const std::vector<Region> left = in_process->slabs(setup.frame, extents);
+      for (int i = 0; i < n; ++i) stocks[i] = intersect(stocks[i], left[i]);
     }
     // Shadows at the levels and every 2 mm above them (for the shanks and holders).
     for (double h = zs.back(); h <= top; h += 2) heights.push_back(h);
@@ -95,7 +103,7 @@ bool cuts(const RoughingOperation& op) {
 }  // namespace
 
 RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const ToolLibrary& library,
-                          const RoughingOptions& options) {
+                          const RoughingOptions& options, const RoughingProgress& progress) {
   const auto start = std::chrono::steady_clock::now();
   RoughingPlan plan;
   // An open mesh is roughed as the solid it closes (solid_closure.h), which the simulation checks against too:
@@ -113,12 +121,28 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
                        ", roughing needs a flat or bull end mill");
   }
   if (!forced && candidates.empty()) throw InputError("roughing: the tool library has no flat or bull end mill");
+  std::unique_ptr<InProcessStock> in_process;
+  if (options.in_process_stock && setups.setups.size() > 1)
+    in_process = std::make_unique<InProcessStock>(part, roughingStock(part, options), options.in_process_rays);
   for (int k = 0; k < static_cast<int>(setups.setups.size()); ++k) {
+    if (progress) progress(k, plan);
+    // What the earlier setups cut is gone from the stock this one starts from.
+    if (in_process && k > 0) {
+      Toolpath cut;
+      std::vector<Tool> tools;
+      for (const RoughingOperation& op : plan.operations)
+        if (op.setup == k - 1) {
+          cut.insert(cut.end(), op.path.begin(), op.path.end());
+          if (const Tool* t = library.find(op.tool)) tools.push_back(*t);
+        }
+      in_process->remove(cut, tools);
+    }
     const Setup& setup = setups.setups[k];
-    const Tool* tool = forced ? forced : chooseRoughingTool(part, setup, candidates, options);
+    const InProcessStock* stock = k > 0 ? in_process.get() : nullptr;  // the first setup starts from the block
+    const Tool* tool = forced ? forced : chooseRoughingTool(part, setup, candidates, options, stock);
     if (!tool) continue;
     std::vector<SlabState> left;
-    RoughingOperation main = roughSetup(part, setup, k, *tool, options, nullptr, &left);
+    RoughingOperation main = roughSetup(part, setup, k, *tool, options, nullptr, &left, stock);
     if (cuts(main)) plan.operations.push_back(std::move(main));
     else continue;
     // Rest passes, each with a tool at most half the size of the one before, over what that one left.
@@ -127,7 +151,7 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
       const Tool* rest = restTool(candidates, *previous);
       if (!rest) break;
       std::vector<SlabState> still;
-      RoughingOperation op = roughSetup(part, setup, k, *rest, options, &left, &still);
+      RoughingOperation op = roughSetup(part, setup, k, *rest, options, &left, &still, stock);
       if (cuts(op)) plan.operations.push_back(std::move(op));
       left = std::move(still);
       previous = rest;
@@ -148,6 +172,7 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
     for (const RoughingLevel& l : plan.operations[i].levels) plan.contours += l.rings;
   }
   plan.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (progress) progress(static_cast<int>(setups.setups.size()), plan);
   return plan;
 }
 

@@ -1,0 +1,52 @@
+// The stock between setups: what the operations so far left (the machined result of one setup is the raw stock of
+// the next). A dexel model of the simulation (simulation/stock.h) on a coarse lattice, swept by each setup's
+// operations as they are planned; a later setup asks it for the material in each of its slabs, projected along its
+// direction. Without it every setup would start from the whole block: cutting air where an earlier setup cleared,
+// and keeping shanks and holders clear of stock that is long gone.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "art2part/geometry/part.h"
+#include "art2part/roughing/region.h"
+#include "art2part/setup/setup_plan.h"
+#include "art2part/simulation/stock.h"
+#include "art2part/simulation/tool_solid.h"
+#include "art2part/tooling/tool.h"
+#include "art2part/tooling/toolpath.h"
+
+namespace art2part {
+
+class MeshDexels;
+class PartDistance;
+
+class InProcessStock {
+ public:
+  // The block of `stock` (a closed mesh in the part frame) around `solid`, on a lattice of about `rays` z-rays (cells of 0.5 mm at the finest).
+  InProcessStock(const Part& solid, const Mesh& stock, int rays = 20000);
+  ~InProcessStock();
+  InProcessStock(const InProcessStock&) = delete;
+  InProcessStock& operator=(const InProcessStock&) = delete;
+
+  // Takes away what `path` cuts (every kind of move; `tools` by id).
+  void remove(const Toolpath& path, const std::vector<Tool>& tools);
+
+  // The material between heights lo and hi of `frame` (its z) for each slab, projected on the frame's x-y plane and
+  // grown by a cell and a half (a column of the lattice is a cell wide, and its projection is rasterised): a
+  // superset of the material there, part included.
+  std::vector<Region> slabs(const SetupFrame& frame, const std::vector<std::pair<double, double>>& slabs) const;
+
+  double cell() const;      // the lattice's largest spacing, mm
+  double volume() const;    // mm^3 of material left, part included
+
+ private:
+  Stock stock_;
+  std::unique_ptr<MeshDexels> part_;
+  std::unique_ptr<PartDistance> distance_;
+  std::map<std::string, ToolSolid> solids_;
+};
+
+}  // namespace art2part

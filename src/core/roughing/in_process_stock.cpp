@@ -1,0 +1,184 @@
+#include "art2part/roughing/in_process_stock.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "art2part/simulation/mesh_dexels.h"
+#include "art2part/simulation/part_distance.h"
+#include "art2part/simulation/sweep.h"
+
+namespace art2part {
+
+namespace {
+
+DexelLattice coarseLattice(const Box& box, int rays) {
+  const Vec3 s = box.size();
+  const double resolution = std::max(0.5, std::sqrt(s.x() * s.y() / std::max(rays, 1)));
+  return DexelLattice::over(box, resolution);
+}
+
+Box unite(Box a, const Box& b) {
+  a.extend(b.min);
+  a.extend(b.max);
+  return a;
+}
+
+// A raster of the frame's x-y plane, a bit per cell.
+struct Raster {
+  double x0 = 0, y0 = 0, cell = 1;
+  int nx = 0, ny = 0;
+  std::vector<std::uint64_t> bits;
+  void mark(double x, double y) {
+    const int i = static_cast<int>(std::floor((x - x0) / cell)), j = static_cast<int>(std::floor((y - y0) / cell));
+    if (i < 0 || j < 0 || i >= nx || j >= ny) return;
+    const std::size_t k = static_cast<std::size_t>(j) * nx + i;
+    bits[k >> 6] |= std::uint64_t(1) << (k & 63);
+  }
+  bool at(int i, int j) const {
+    if (i < 0 || j < 0 || i >= nx || j >= ny) return false;
+    const std::size_t k = static_cast<std::size_t>(j) * nx + i;
+    return (bits[k >> 6] >> (k & 63)) & 1;
+  }
+};
+
+// The marked cells grown by `grow` cells every way (a square, row pass then column pass), as a region: the runs of
+// each row as rectangles. The raster's edge rows and columns reach `grow` cells past it.
+Region rasterRegion(const Raster& r, int grow) {
+  const int nx = r.nx + 2 * grow, ny = r.ny + 2 * grow;  // the grown raster, offset by `grow`
+  std::vector<char> wide(static_cast<std::size_t>(nx) * ny, 0), grown(wide.size(), 0);
+  bool any = false;
+  std::vector<int> before(r.nx + 1);  // marked cells of the row left of each
+  for (int j = 0; j < r.ny; ++j) {
+    for (int i = 0; i < r.nx; ++i) before[i + 1] = before[i] + (r.at(i, j) ? 1 : 0);
+    if (before[r.nx] == 0) continue;
+    any = true;
+    for (int w = 0; w < nx; ++w) {
+      const int i = w - grow;  // the raster's column
+      const int lo = std::clamp(i - grow, 0, r.nx), hi = std::clamp(i + grow + 1, 0, r.nx);
+      if (before[hi] > before[lo]) wide[static_cast<std::size_t>(j + grow) * nx + w] = 1;
+    }
+  }
+  if (!any) return {};
+  for (int i = 0; i < nx; ++i) {
+    int last = -1000000;
+    for (int j = 0; j < ny; ++j) {
+      if (wide[static_cast<std::size_t>(j) * nx + i]) last = j;
+      if (j - last <= grow) grown[static_cast<std::size_t>(j) * nx + i] = 1;
+    }
+    last = 1000000;
+    for (int j = ny - 1; j >= 0; --j) {
+      if (wide[static_cast<std::size_t>(j) * nx + i]) last = j;
+      if (last - j <= grow) grown[static_cast<std::size_t>(j) * nx + i] = 1;
+    }
+  }
+  std::vector<Ring> rects;
+  for (int j = 0; j < ny; ++j) {
+    const double y0 = r.y0 + (j - grow) * r.cell, y1 = y0 + r.cell;
+    for (int i = 0; i < nx;) {
+      if (!grown[static_cast<std::size_t>(j) * nx + i]) { ++i; continue; }
+      int k = i;
+      while (k < nx && grown[static_cast<std::size_t>(j) * nx + k]) ++k;
+      const double x0 = r.x0 + (i - grow) * r.cell, x1 = r.x0 + (k - grow) * r.cell;
+      rects.push_back({Point2(x0, y0), Point2(x1, y0), Point2(x1, y1), Point2(x0, y1)});
+      i = k;
+    }
+  }
+  return regionFromPolygons(rects);
+}
+
+}  // namespace
+
+InProcessStock::InProcessStock(const Part& solid, const Mesh& stock, int rays) {
+  const DexelLattice lattice = coarseLattice(unite(boundingBox(stock), boundingBox(solid.mesh)), rays);
+  part_ = std::make_unique<MeshDexels>(solid.mesh, lattice);
+  stock_ = meshStock(MeshDexels(stock, lattice));
+  addSolid(stock_, *part_);
+  distance_ = std::make_unique<PartDistance>(solid.mesh);
+}
+
+InProcessStock::~InProcessStock() = default;
+
+double InProcessStock::cell() const { return stock_.lattice.spacing.maxCoeff(); }
+
+double InProcessStock::volume() const { return stock_.volume(); }
+
+void InProcessStock::remove(const Toolpath& path, const std::vector<Tool>& tools) {
+  if (path.empty()) return;
+  for (const Tool& t : tools)
+    if (!solids_.count(t.id)) solids_[t.id] = toolSolid(t, 0.01);
+  SweepOptions options;
+  options.cusp_step = false;
+  sweepToolpath(stock_, *part_, *distance_, path, solids_, options);
+}
+
+std::vector<Region> InProcessStock::slabs(const SetupFrame& frame,
+                                          const std::vector<std::pair<double, double>>& slabs) const {
+  const DexelLattice& lattice = stock_.lattice;
+  // The raster spans the lattice box's projection; its cells as large as the lattice's.
+  Raster proto;
+  proto.cell = lattice.spacing.maxCoeff();
+  double x1 = -1e300, y1 = -1e300;
+  proto.x0 = proto.y0 = 1e300;
+  for (int c = 0; c < 8; ++c) {
+    const Vec3 p(c & 1 ? lattice.box.max.x() : lattice.box.min.x(), c & 2 ? lattice.box.max.y() : lattice.box.min.y(),
+                 c & 4 ? lattice.box.max.z() : lattice.box.min.z());
+    const Vec3 d = p - frame.origin;
+    proto.x0 = std::min(proto.x0, d.dot(frame.x));
+    proto.y0 = std::min(proto.y0, d.dot(frame.y));
+    x1 = std::max(x1, d.dot(frame.x));
+    y1 = std::max(y1, d.dot(frame.y));
+  }
+  proto.nx = static_cast<int>(std::ceil((x1 - proto.x0) / proto.cell)) + 1;
+  proto.ny = static_cast<int>(std::ceil((y1 - proto.y0) / proto.cell)) + 1;
+  proto.bits.assign((static_cast<std::size_t>(proto.nx) * proto.ny + 63) / 64, 0);
+  std::vector<Raster> rasters(slabs.size(), proto);
+
+  // Every family of rays: a wall thinner than a cell that one family passes between is crossed by another.
+  const double step = 0.5 * proto.cell;
+  for (int axis = 0; axis < 3; ++axis) {
+    const Vec3 along(frame.x[axis], frame.y[axis], frame.z[axis]);  // the rays' direction in the frame
+    // A ray stands for a column a cell wide: its material reaches this far along the frame's z beyond the ray.
+    const int u = DexelLattice::uAxis(axis), v = DexelLattice::vAxis(axis);
+    const double thick = 0.5 * (std::abs(frame.z[u]) * lattice.spacing[u] + std::abs(frame.z[v]) * lattice.spacing[v]);
+    const int nu = lattice.cells[DexelLattice::uAxis(axis)], nv = lattice.cells[DexelLattice::vAxis(axis)];
+    for (int iv = 0; iv < nv; ++iv)
+      for (int iu = 0; iu < nu; ++iu) {
+        const SpanList& spans = stock_.ray(axis, lattice.rayIndex(axis, iu, iv));
+        if (spans.empty()) continue;
+        const Vec3 d = lattice.rayOrigin(axis, iu, iv) - frame.origin;
+        const Vec3 origin(d.dot(frame.x), d.dot(frame.y), d.dot(frame.z));  // the ray at t = 0, in the frame
+        for (const Span& span : spans) {
+          const double za = origin.z() + span.lo * along.z(), zb = origin.z() + span.hi * along.z();
+          const double zlo = std::min(za, zb), zhi = std::max(za, zb);
+          for (std::size_t s = 0; s < slabs.size(); ++s) {
+            const double lo = slabs[s].first - thick, hi = slabs[s].second + thick;
+            if (hi < zlo || lo > zhi) continue;
+            // The piece of the span inside the slab.
+            double t0 = span.lo, t1 = span.hi;
+            if (std::abs(along.z()) > 1e-12) {
+              double a = (lo - origin.z()) / along.z(), b = (hi - origin.z()) / along.z();
+              if (a > b) std::swap(a, b);
+              t0 = std::max(t0, a);
+              t1 = std::min(t1, b);
+              if (t0 > t1) continue;
+            }
+            const Point2 p0(origin.x() + t0 * along.x(), origin.y() + t0 * along.y());
+            const Point2 p1(origin.x() + t1 * along.x(), origin.y() + t1 * along.y());
+            const int n = static_cast<int>(std::ceil((p1 - p0).norm() / step)) + 1;
+            for (int k = 0; k <= n; ++k) {
+              const Point2 q = p0 + (p1 - p0) * (static_cast<double>(k) / n);
+              rasters[s].mark(q.x(), q.y());
+            }
+          }
+        }
+      }
+  }
+  // A cell and a half and more: a marked cell holds material somewhere in it, a column is a cell wide.
+  std::vector<Region> out;
+  out.reserve(slabs.size());
+  for (const Raster& r : rasters) out.push_back(rasterRegion(r, 2));
+  return out;
+}
+
+}  // namespace art2part

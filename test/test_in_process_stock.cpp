@@ -1,0 +1,83 @@
+// The stock between setups (in_process_stock.h): what a cut leaves, seen from a setup, is never less than what is there.
+#include <gtest/gtest.h>
+
+#include "art2part/geometry/part.h"
+#include "art2part/roughing/in_process_stock.h"
+#include "test_meshes.h"
+
+using namespace art2part;
+
+namespace {
+
+Tool flat10() {
+  Tool t;
+  t.id = "flat10";
+  t.type = ToolType::Flat;
+  t.diameter = 10;
+  t.flute_length = 22;
+  t.shank_diameter = 10;
+  t.stickout = 38;
+  t.holder = {{32, 20}, {40, 44}};
+  return t;
+}
+
+// A zig-zag of a 10 mm flat mill with its tip at height z over [x0, x1] x [y0, y1], passes 4 mm apart.
+Toolpath raster(double x0, double x1, double y0, double y1, double z) {
+  Toolpath path;
+  bool forth = true;
+  for (double y = y0; y <= y1 + 1e-9; y += 4, forth = !forth)
+    for (double x : {forth ? x0 : x1, forth ? x1 : x0}) {
+      CutterLocation c;
+      c.tool = "flat10";
+      c.tip = Vec3(x, y, z);
+      path.push_back(c);
+    }
+  return path;
+}
+
+bool inside(const Region& r, double x, double y) { return regionContains(r, Point2(x, y)); }
+
+}  // namespace
+
+TEST(InProcessStock, WhatACutTookIsGoneAndWhatItLeftStays) {
+  // A 20 x 20 x 10 part in a 40 x 40 x 20 block; a 10 mm mill clears everything above z = 10.
+  const Part part = partFromMesh(test::box(Vec3(10, 10, 0), Vec3(30, 30, 10)), "block");
+  const Mesh stock = test::box(Vec3(0, 0, 0), Vec3(40, 40, 20));
+  InProcessStock in_process(part, stock, 400);  // 2 mm cells
+  EXPECT_NEAR(in_process.cell(), 2.0, 1e-9);
+  EXPECT_NEAR(in_process.volume(), 40 * 40 * 20, 1e-6);
+  in_process.remove(raster(-6, 46, -6, 46, 10), {flat10()});
+  EXPECT_NEAR(in_process.volume(), 40 * 40 * 10, 1.0);
+
+  SetupFrame top;  // from +z, origin at 0
+  const std::vector<Region> from_top = in_process.slabs(top, {{11, 20}, {0, 9}});
+  EXPECT_TRUE(regionEmpty(from_top[0])) << regionArea(from_top[0]);
+  for (double x : {0.5, 20.0, 39.5})
+    for (double y : {0.5, 20.0, 39.5}) EXPECT_TRUE(inside(from_top[1], x, y)) << x << " " << y;
+  // Grown by a cell and a half at most two cells: never far beyond the block.
+  EXPECT_FALSE(inside(from_top[1], -5, 20));
+
+  // From +x (frame y along part z): the slab x in [0, 9] holds material only below z = 10 (and not above 10 plus
+  // the growth).
+  SetupFrame side;
+  side.x = Vec3::UnitY();
+  side.y = Vec3::UnitZ();
+  side.z = Vec3::UnitX();
+  const std::vector<Region> from_side = in_process.slabs(side, {{0, 9}});
+  EXPECT_TRUE(inside(from_side[0], 20, 5));
+  EXPECT_TRUE(inside(from_side[0], 0.5, 0.5));
+  EXPECT_FALSE(inside(from_side[0], 20, 19.5));
+}
+
+TEST(InProcessStock, AWallThinnerThanACellIsSeen) {
+  // A plate 0.6 mm thick standing between two of the z-rays: the x-rays cross it, so every slab from +z holds it.
+  const Part part = partFromMesh(test::box(Vec3(100, 100, 0), Vec3(101, 101, 1)), "far away");
+  const Mesh plate = test::box(Vec3(10.7, 0, 0), Vec3(11.3, 40, 20));
+  InProcessStock in_process(part, plate, 400);
+  SetupFrame top;
+  const std::vector<Region> slabs = in_process.slabs(top, {{15, 16}, {5, 6}});
+  for (const Region& r : slabs) {
+    EXPECT_TRUE(inside(r, 11, 20));
+    EXPECT_TRUE(inside(r, 11, 1));
+  }
+}
