@@ -2,6 +2,7 @@
 // same region computed whole at every level from its definition; and the polygon simplification it relies on.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -76,6 +77,37 @@ TEST(SimplifyRegion, StaysWithinTheToleranceBothWays) {
   const Region tiny = regionFromPolygons({{Point2(0, 0), Point2(0.01, 0), Point2(0.01, 0.002), Point2(0.005, 0.003),
                                            Point2(0, 0.002)}});
   EXPECT_NEAR(regionArea(simplifyRegion(tiny, 0.05)), regionArea(tiny), 1e-12);
+}
+
+TEST(SimplifyRegion, NeverTurnsARingOver) {
+  // Thin jagged bands, 40 um wide, simplified at 0.2 mm: the two long sides collapse onto one line, and a ring whose
+  // sides cross would wind the other way (an outer ring turned over cuts a hole out of a region: CTC-02's forbidden
+  // region lost the part's shadow 27 mm deep that way). Every ring keeps its sense and its area within its perimeter
+  // times the tolerance.
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> jitter(-0.02, 0.02), step(0.05, 0.4);
+  int turned_before = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    Ring ring;
+    for (double x = 0; x < 30; x += step(random)) ring.emplace_back(x, 0.02 + jitter(random));
+    for (double x = 30; x > 0; x -= step(random)) ring.emplace_back(x, -0.02 + jitter(random));
+    Region region;
+    ClipperLib::Path path;
+    for (const Point2& p : ring) path.push_back(toRegionPoint(p));
+    if (ClipperLib::Area(path) < 0) std::reverse(path.begin(), path.end());
+    region.push_back(path);
+    const Region simple = simplifyRegion(region, 0.2);
+    ASSERT_EQ(simple.size(), 1u);
+    const double before = ClipperLib::Area(path), after = ClipperLib::Area(simple[0]);
+    double perimeter = 0;
+    for (std::size_t k = 0; k < path.size(); ++k)
+      perimeter += std::hypot(static_cast<double>(path[(k + 1) % path.size()].X - path[k].X),
+                              static_cast<double>(path[(k + 1) % path.size()].Y - path[k].Y));
+    EXPECT_GT(after, 0) << "trial " << trial;
+    EXPECT_LE(std::abs(after - before), perimeter * 0.2 * kRegionScale + 1) << "trial " << trial;
+    turned_before += after <= 0;
+  }
+  EXPECT_EQ(turned_before, 0);
 }
 
 TEST(ForbiddenRegion, GrownLevelByLevelIsTheWholeRegionUpToItsTolerances) {

@@ -159,7 +159,18 @@ Region simplifyRegion(const Region& region, double tolerance) {
     Path simple;
     for (std::size_t k = 0; k < n; ++k)
       if (keep[k]) simple.push_back(path[k]);
-    out.push_back(simple.size() >= 3 ? std::move(simple) : path);  // a ring within the tolerance of a segment stays
+    // A ring within the tolerance of a segment stays; so does one that simplifying would turn over or cross itself
+    // (its signed area changes sign or by more than its perimeter times the tolerance allows): an outer ring turned
+    // over would cut a hole out of the region.
+    const double before = ClipperLib::Area(path), after = simple.size() >= 3 ? ClipperLib::Area(simple) : 0;
+    double perimeter = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const IntPoint &a = path[k], &b = path[(k + 1) % n];
+      perimeter += std::hypot(static_cast<double>(b.X - a.X), static_cast<double>(b.Y - a.Y));
+    }
+    const bool faithful = simple.size() >= 3 && (before > 0) == (after > 0) &&
+                          std::abs(after - before) <= perimeter * tolerance * kRegionScale + 1;
+    out.push_back(faithful ? std::move(simple) : path);
   }
   return out;
 }
