@@ -60,7 +60,8 @@ nlohmann::json operationJson(int index, const RoughingOperation& op) {
           {"tool", op.tool},        {"points", op.path.size()},  {"length_mm", op.feed_mm},
           {"rapid_mm", op.rapid_mm}, {"time_s", op.seconds},      {"levels", op.levels.size()},
           {"critical_levels", critical}, {"ramps", op.ramps},    {"plunges", op.plunges},
-          {"retracts", op.retracts}, {"plan_seconds", op.plan_seconds}};
+          {"retracts", op.retracts}, {"plan_seconds", op.plan_seconds},
+          {"direct_shadow_levels", op.direct_levels}};
 }
 
 nlohmann::json verificationJson(const VerificationReport& report) {
@@ -91,6 +92,8 @@ nlohmann::json planJson(const Part& part, const VisibilityResult& visibility, co
   j["operations"] = nlohmann::json::array();
   for (int i = 0; i < static_cast<int>(roughing.operations.size()); ++i)
     j["operations"].push_back(operationJson(i, roughing.operations[i]));
+  j["roughing_region_failures"] = roughing.region_failures;
+  j["roughing_direct_shadow_levels"] = roughing.direct_levels;
   j["verification"] = report ? verificationJson(*report) : nlohmann::json(nullptr);
   j["timings"] = timings;
   return j;
@@ -274,6 +277,9 @@ int runPlan(const std::vector<std::string>& args) {
   if (roughing.closed_open_mesh_edges > 0)
     std::cout << "solid:        the mesh is open (" << roughing.closed_open_mesh_edges
               << " boundary edges): roughed and simulated as the solid between it and a floor on its open side\n";
+  if (roughing.region_failures > 0 || roughing.direct_levels > 0)
+    std::cout << "warning:      " << roughing.region_failures << " polygon operations failed, " << roughing.direct_levels
+              << " levels took the shadow directly (the grown forbidden region missed part of it)\n";
   for (int i = 0; i < static_cast<int>(roughing.operations.size()); ++i) {
     const RoughingOperation& op = roughing.operations[i];
     std::cout << "operation " << i << ":  " << op.kind << ", setup " << op.setup << ", tool " << op.tool << ", "

@@ -41,6 +41,9 @@ Region dropThinPieces(const Region& region, double half_width);
 Region dropSlivers(const Region& region, double min_area_mm2);
 
 double regionArea(const Region& region);  // mm^2, holes subtracted
+// Boolean operations Clipper reported as failed since the program started (their results are unreliable): a
+// diagnostic the roughing stage reports.
+long regionFailures();
 bool regionEmpty(const Region& region);
 // Inside or on the boundary.
 bool regionContains(const Region& region, const Point2& p);

@@ -66,6 +66,7 @@ struct RoughingOperation {
   double feed_mm = 0, rapid_mm = 0, seconds = 0;  // length and estimated time
   int ramps = 0, plunges = 0, retracts = 0;  // ramp entries, straight entries into stock (passes too short to ramp), retracts
   double plan_seconds = 0;
+  int direct_levels = 0;      // levels whose grown forbidden region missed part of the shadow (taken directly there)
 };
 
 struct RoughingPlan {
@@ -73,6 +74,8 @@ struct RoughingPlan {
   double seconds = 0;
   int contours = 0;           // rings of centre regions over all levels
   int closed_open_mesh_edges = 0;  // the part's mesh was open: the edges of its boundary, closed (solid_closure.h)
+  long region_failures = 0;   // Clipper operations that reported failure while planning (regionFailures())
+  int direct_levels = 0;      // levels over all operations whose grown forbidden region missed part of the shadow
 };
 
 // One operation: `tool` clears the stock of one setup top-down; `before`, if given, is what a previous operation

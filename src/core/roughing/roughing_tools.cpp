@@ -108,6 +108,7 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
   RoughingPlan plan;
   // An open mesh is roughed as the solid it closes (solid_closure.h), which the simulation checks against too:
   // otherwise every setup from its open side would clear up to the surface's back.
+  const long failures_before = regionFailures();
   SolidClosure closure;
   const Part part = machiningSolid(given, &closure);
   plan.closed_open_mesh_edges = closure.boundary_edges;
@@ -170,7 +171,9 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
   for (int i = 0; i < static_cast<int>(plan.operations.size()); ++i) {
     for (CutterLocation& c : plan.operations[i].path) c.op = i;
     for (const RoughingLevel& l : plan.operations[i].levels) plan.contours += l.rings;
+    plan.direct_levels += plan.operations[i].direct_levels;
   }
+  plan.region_failures = regionFailures() - failures_before;
   plan.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (progress) progress(static_cast<int>(setups.setups.size()), plan);
   return plan;
