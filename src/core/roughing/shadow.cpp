@@ -1,6 +1,7 @@
 #include "art2part/roughing/shadow.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <functional>
 #include <numeric>
@@ -23,6 +24,15 @@ Vec3 fromFrame(const Vec3& p, const SetupFrame& frame) {
 }
 
 namespace {
+
+// Rings of no area to speak of (under 1 um2: edges of up- and down-facing triangles projected onto each other) are
+// dropped: hundreds of them in a shadow made Clipper take the shadow's outline for a hole (CTC-01, +z, 68 mm down).
+Region dropDegenerateRings(Region region) {
+  region.erase(std::remove_if(region.begin(), region.end(),
+                              [](const ClipperLib::Path& p) { return std::abs(ClipperLib::Area(p)) < 1e-6 * kRegionScale * kRegionScale; }),
+               region.end());
+  return region;
+}
 
 // The point of edge a-b at height z, computed from the lower-indexed end so that two triangles sharing the edge get
 // the same point.
@@ -103,8 +113,8 @@ const Region& ShadowSweep::shadowAt(double z) {
   slab_triangles_ += static_cast<int>(pieces.size());
   gain_.clear();
   if (!pieces.empty()) {
-    gain_ = subtract(regionFromPolygons(pieces), shadow_);
-    if (!gain_.empty()) shadow_ = unite(shadow_, gain_);
+    gain_ = dropDegenerateRings(subtract(regionFromPolygons(pieces), shadow_));
+    if (!gain_.empty()) shadow_ = dropDegenerateRings(unite(shadow_, gain_));
     gain_ = dropThinPieces(gain_, kThinGain);
   }
   previous_z_ = z;
