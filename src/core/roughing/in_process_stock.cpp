@@ -18,12 +18,6 @@ DexelLattice coarseLattice(const Box& box, int rays) {
   return DexelLattice::over(box, resolution);
 }
 
-Box unite(Box a, const Box& b) {
-  a.extend(b.min);
-  a.extend(b.max);
-  return a;
-}
-
 // A raster of the frame's x-y plane, a bit per cell.
 struct Raster {
   double x0 = 0, y0 = 0, cell = 1;
@@ -90,7 +84,10 @@ Region rasterRegion(const Raster& r, int grow) {
 }  // namespace
 
 InProcessStock::InProcessStock(const Part& solid, const Mesh& stock, int rays) {
-  const DexelLattice lattice = coarseLattice(unite(boundingBox(stock), boundingBox(solid.mesh)), rays);
+  Box box = boundingBox(stock);
+  box.extend(boundingBox(solid.mesh).min);
+  box.extend(boundingBox(solid.mesh).max);
+  const DexelLattice lattice = coarseLattice(box, rays);
   part_ = std::make_unique<MeshDexels>(solid.mesh, lattice);
   stock_ = meshStock(MeshDexels(stock, lattice));
   addSolid(stock_, *part_);
@@ -134,6 +131,15 @@ std::vector<Region> InProcessStock::slabs(const SetupFrame& frame,
   proto.bits.assign((static_cast<std::size_t>(proto.nx) * proto.ny + 63) / 64, 0);
   std::vector<Raster> rasters(slabs.size(), proto);
 
+  // Slabs by their bottom, highest first: a piece of a column visits only those it can reach (a hot loop: rays x
+  // spans x slabs otherwise).
+  std::vector<std::size_t> order(slabs.size());
+  double tallest = 0;
+  for (std::size_t i = 0; i < slabs.size(); ++i) {
+    order[i] = i;
+    tallest = std::max(tallest, slabs[i].second - slabs[i].first);
+  }
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return slabs[a].first > slabs[b].first; });
   // Every family of rays: a wall thinner than a cell that one family passes between is crossed by another.
   const double step = 0.5 * proto.cell;
   for (int axis = 0; axis < 3; ++axis) {
@@ -151,7 +157,11 @@ std::vector<Region> InProcessStock::slabs(const SetupFrame& frame,
         for (const Span& span : spans) {
           const double za = origin.z() + span.lo * along.z(), zb = origin.z() + span.hi * along.z();
           const double zlo = std::min(za, zb), zhi = std::max(za, zb);
-          for (std::size_t s = 0; s < slabs.size(); ++s) {
+          // The first slab whose (grown) bottom is at or below the piece's top, down to those too low to reach it.
+          auto first = std::partition_point(order.begin(), order.end(),
+                                            [&](std::size_t i) { return slabs[i].first - thick > zhi; });
+          for (auto it = first; it != order.end() && slabs[*it].first + tallest + thick >= zlo; ++it) {
+            const std::size_t s = *it;
             const double lo = slabs[s].first - thick, hi = slabs[s].second + thick;
             if (hi < zlo || lo > zhi) continue;
             // The piece of the span inside the slab.
