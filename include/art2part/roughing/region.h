@@ -47,6 +47,28 @@ long regionFailures();
 bool regionEmpty(const Region& region);
 // Inside or on the boundary.
 bool regionContains(const Region& region, const Point2& p);
+// The rings whose bounding boxes meet the box [lo, hi] (mm): the same set as the region within that box (a hole's
+// box lies within its outer ring's), usually far fewer edges for a boolean operation with something small.
+Region ringsMeeting(const Region& region, const Point2& lo, const Point2& hi);
+
+// regionContains for many points of one region: its edges bucketed into horizontal bands, so a query looks at the
+// edges of its band only (a winding number by the crossings of a ray towards +x) instead of every ring. The same
+// answers as regionContains (boundary inside). Keeps no reference to the region.
+class RegionLocator {
+ public:
+  RegionLocator() = default;
+  explicit RegionLocator(const Region& region);
+  bool contains(const Point2& p) const;
+  bool empty() const { return bands_.empty(); }
+
+ private:
+  struct Edge {
+    ClipperLib::IntPoint a, b;  // as the ring runs
+  };
+  ClipperLib::cInt y0_ = 0, band_ = 1;
+  std::vector<std::vector<Edge>> bands_;
+};
+
 // The whole segment a-b lies in the region (boundary included): cut wherever it meets a ring (crossing, touching a
 // vertex, running along an edge), the middle of each piece is inside, or the piece runs along an edge.
 bool segmentInside(const Region& region, const Point2& a, const Point2& b);

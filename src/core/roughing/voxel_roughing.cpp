@@ -27,7 +27,9 @@ struct Slab {
   Region remaining;   // stock and part section, as the 3-axis operation left it
   Region part;        // the part's section in the slab, grown by the allowance
   Region material;    // remaining - part: what this operation is for
+  bool has_material = false;
   Region near_shank, near_holder;
+  RegionLocator in_near_shank, in_near_holder;
 };
 
 struct Voxel {
@@ -93,9 +95,12 @@ void buildSlabs(Context& c, const std::vector<SlabState>& left, const Tool& tool
     if (!regionEmpty(slab.remaining)) {
       slab.part = offsetRegion(part, c.options.allowance);
       slab.material = dropSlivers(subtract(slab.remaining, slab.part), 1.0);
+      slab.has_material = !regionEmpty(slab.material);
     }
     slab.near_shank = growForBody(slab.material, bodyRadius(tool, false) + c.options.holder_margin);
     slab.near_holder = growForBody(slab.material, bodyRadius(tool, true) + c.options.holder_margin);
+    slab.in_near_shank = RegionLocator(slab.near_shank);
+    slab.in_near_holder = RegionLocator(slab.near_holder);
     c.slabs.push_back(std::move(slab));
   };
   for (std::size_t i = 0; i < order.size();) {
@@ -138,11 +143,14 @@ bool footprintClear(const Slab& slab, const Point2& centre, const Vec3& axis_in_
   along = along.norm() > 1e-9 ? along.normalized() : Point2(1, 0);
   const Point2 across(-along.y(), along.x());
   Ring ellipse;
+  Point2 lo(1e300, 1e300), hi(-1e300, -1e300);
   for (int k = 0; k < 32; ++k) {
     const double a = 2 * kPi * k / 32;
     ellipse.push_back(centre + radius / cos_t * std::cos(a) * along + radius * std::sin(a) * across);
+    lo = lo.cwiseMin(ellipse.back()), hi = hi.cwiseMax(ellipse.back());
   }
-  return regionEmpty(intersect(regionFromPolygons({ellipse}), slab.part));
+  const Region near = ringsMeeting(slab.part, lo, hi);
+  return near.empty() || regionEmpty(intersect(regionFromPolygons({ellipse}), near));
 }
 
 // Shank and holder out of the material left in the slabs above (with the tool descending along its axis from the
@@ -152,12 +160,12 @@ bool clearOfStockAbove(const Context& c, const Tool& tool, std::size_t slab_inde
   if (axis_frame.z() <= 1e-6) return false;
   for (std::size_t s = 0; s < slab_index; ++s) {
     const Slab& slab = c.slabs[s];
-    if (regionEmpty(slab.material)) continue;
+    if (!slab.has_material) continue;
     const double h = (0.5 * (slab.z + slab.top) - tip_frame.z()) / axis_frame.z();
     if (h <= tool.flute_length) continue;
     const Vec3 at = tip_frame + h * axis_frame;
-    const Region& near = h <= tool.stickout ? slab.near_shank : slab.near_holder;
-    if (regionContains(near, Point2(at.x(), at.y()))) return false;
+    const RegionLocator& near = h <= tool.stickout ? slab.in_near_shank : slab.in_near_holder;
+    if (near.contains(Point2(at.x(), at.y()))) return false;
   }
   return true;
 }
@@ -177,7 +185,7 @@ constexpr int kLayers = 4;  // sub-layers of a slab in which the cut of a leanin
 struct Standing {
   struct Zone {
     double from = 0, to = 0;                 // heights above the tip
-    std::array<Region, kLayers> near;        // per sub-layer: what stands there, grown by the zone's radius + margin
+    std::array<RegionLocator, kLayers> near;  // per sub-layer: what stands there, grown by the zone's radius + margin
   };
   std::vector<Zone> zones;                   // shank, then each holder step, those starting within `inside`
   double z = 0, thickness = 0;
@@ -218,7 +226,7 @@ Standing standingMaterial(const Context& c, const Slab& slab, const std::array<R
   for (const BodyZone& body : zones) {
     Standing::Zone z{body.from, body.to, {}};
     for (int k = 0; k < kLayers; ++k)
-      z.near[k] = growForBody(subtract(material, intersect(cut[k], window)), body.radius + margin);
+      z.near[k] = RegionLocator(growForBody(subtract(material, intersect(cut[k], window)), body.radius + margin));
     standing.zones.push_back(std::move(z));
   }
   return standing;
@@ -235,7 +243,7 @@ bool clearOfStanding(const Standing& standing, const Slab& slab, const Vec3& tip
   for (const Standing::Zone& zone : standing.zones)
     for (double h = zone.from; h <= std::min(zone.to, leaves); h += 1.0) {
       const Vec3 at = tip_frame + h * axis_frame;
-      if (regionContains(zone.near[layerOf(standing, at.z())], Point2(at.x(), at.y()))) return false;
+      if (zone.near[layerOf(standing, at.z())].contains(Point2(at.x(), at.y()))) return false;
     }
   return true;
 }
@@ -303,13 +311,13 @@ double stepoverOf(const Tool& tool, const RoughingOptions& options) {
 std::vector<std::vector<Voxel>> sampleRows(const Context& c, const Slab& slab, const Tool& tool, double spacing,
                                            const Point2& tilt) {
   std::vector<std::vector<Voxel>> rows;
-  if (regionEmpty(slab.material)) return rows;
+  if (!slab.has_material) return rows;
   const double r = tool.diameter / 2, step = spacing / 2;
   const Point2 along(-tilt.y(), tilt.x());
-  const Region near = offsetRegion(slab.material, r + 2 * step);
-  const Region occupied = offsetRegion(slab.remaining, r + 0.5);
+  const Region near_region = offsetRegion(slab.material, r + 2 * step);
+  const RegionLocator near(near_region), material(slab.material), occupied(offsetRegion(slab.remaining, r + 0.5));
   double s0 = 1e300, s1 = -1e300, q0 = 1e300, q1 = -1e300;
-  for (const Ring& ring : regionRings(near))
+  for (const Ring& ring : regionRings(near_region))
     for (const Point2& p : ring) {
       s0 = std::min(s0, p.dot(along)); s1 = std::max(s1, p.dot(along));
       q0 = std::min(q0, p.dot(tilt)); q1 = std::max(q1, p.dot(tilt));
@@ -318,15 +326,15 @@ std::vector<std::vector<Voxel>> sampleRows(const Context& c, const Slab& slab, c
     std::vector<Voxel> row;
     for (double s = s0; s <= s1; s += step) {
       const Point2 xy = s * along + q * tilt;
-      if (!regionContains(near, xy)) {
+      if (!near.contains(xy)) {
         if (!row.empty()) rows.push_back(std::move(row)), row.clear();
         continue;
       }
       Voxel v;
       v.xy = xy;
       v.point = v.tip = fromFrame(Vec3(xy.x(), xy.y(), slab.z), c.setup.frame);
-      v.material = regionContains(slab.material, xy);
-      v.air = !regionContains(occupied, xy);
+      v.material = material.contains(xy);
+      v.air = !occupied.contains(xy);
       row.push_back(std::move(v));
     }
     if (!row.empty()) rows.push_back(std::move(row));
