@@ -158,6 +158,28 @@ TEST(RegionLocator, AnswersAsRegionContainsInsideOutsideAndOnTheBoundary) {
   EXPECT_FALSE(RegionLocator(Region{}).contains(Point2(0, 0)));
 }
 
+TEST(OffsetRegion, GrowsARegionWhoseHoleTouchesItsLowestVertex) {
+  // A square with a small hole through the vertex Clipper's offset takes for the lowest (largest y, then smallest x),
+  // the hole listed first, as Clipper's own results may list them: the offset took the hole for the outer ring and
+  // turned every ring over, so the square shrank instead of growing (CTC-02: a holder kept 12 mm from stock instead
+  // of 20.5, 1,302 collisions).
+  Region region;
+  ClipperLib::Path hole{toRegionPoint(Point2(0, 10)), toRegionPoint(Point2(0.5, 9)), toRegionPoint(Point2(1, 9.5))};
+  if (ClipperLib::Orientation(hole)) ClipperLib::ReversePath(hole);
+  ClipperLib::Path outer{toRegionPoint(Point2(0, 0)), toRegionPoint(Point2(10, 0)), toRegionPoint(Point2(10, 10)),
+                         toRegionPoint(Point2(0, 10))};
+  region.push_back(hole);
+  region.push_back(outer);
+  const Region grown = offsetRegion(region, 1.0);
+  const double exact = 100 + 4 * 10 + kPi;  // the square's Minkowski sum with a unit disc (the hole closes)
+  EXPECT_NEAR(regionArea(grown), exact, 0.05);
+  EXPECT_TRUE(regionContains(grown, Point2(-0.5, 5)));
+  EXPECT_TRUE(regionContains(grown, Point2(5, 5)));
+  const Region shrunk = offsetRegion(region, -1.0);  // erosion: the hole grows, the square shrinks
+  EXPECT_LT(regionArea(shrunk), 64);
+  EXPECT_GT(regionArea(shrunk), 50);
+}
+
 TEST(ForbiddenRegion, GrownLevelByLevelIsTheWholeRegionUpToItsTolerances) {
   const Mesh part = sphere(25, 48, 96);
   const double r = 5.3;  // cutter radius + allowance

@@ -142,8 +142,45 @@ Region intersect(const Region& a, const Region& b) { return clip(a, b, ClipperLi
 // Round joins are flattened into chords whose vertices lie on the true arc. The default, 5 um, is far inside the
 // finishing allowance that forbidden regions keep, and gives 99 vertices per full turn of a 10 mm radius instead of
 // 222 at 1 um (offsets are most of roughing's time).
-Region offsetRegion(const Region& region, double mm, double arc_tolerance) {
-  if (region.empty()) return {};
+namespace {
+
+// ClipperOffset's notion of the lowest vertex: largest y, then smallest x.
+bool lower(const IntPoint& p, const IntPoint& q) { return p.Y > q.Y || (p.Y == q.Y && p.X < q.X); }
+
+IntPoint lowestVertex(const Path& path) {
+  IntPoint lowest = path[0];
+  for (const IntPoint& p : path)
+    if (lower(p, lowest)) lowest = p;
+  return lowest;
+}
+
+// ClipperOffset takes the ring holding the lowest vertex (the first such ring on a tie) for an outer ring, and when
+// that ring winds clockwise it turns every ring over: the region then shrinks where it should grow. Clipper's own
+// results can carry a degenerate hole through an outer ring's lowest vertex (CTC-02: a 4-point hole of no area made a
+// holder's forbidden region shrink instead of grow by 20.5 mm, 1,302 holder collisions). Outer rings go in first, so
+// that ties go to them, and a hole reaching below every outer ring (so lying in none) is left out.
+Region outerRingsFirst(const Region& region) {
+  Region outer, holes;
+  for (const Path& path : region) {
+    if (path.size() < 3) continue;
+    (ClipperLib::Area(path) > 0 ? outer : holes).push_back(path);
+  }
+  if (outer.empty()) return region;
+  IntPoint lowest = lowestVertex(outer[0]);
+  for (const Path& path : outer) {
+    const IntPoint p = lowestVertex(path);
+    if (lower(p, lowest)) lowest = p;
+  }
+  for (const Path& path : holes)
+    if (!lower(lowestVertex(path), lowest)) outer.push_back(path);
+  return outer;
+}
+
+}  // namespace
+
+Region offsetRegion(const Region& given, double mm, double arc_tolerance) {
+  if (given.empty()) return {};
+  const Region region = outerRingsFirst(given);
   auto grow = [&](const Region& from) {
     ClipperLib::ClipperOffset offset(2.0, arc_tolerance * kRegionScale);
     offset.AddPaths(from, ClipperLib::jtRound, ClipperLib::etClosedPolygon);
@@ -159,6 +196,7 @@ Region offsetRegion(const Region& region, double mm, double arc_tolerance) {
   if (lost || !wellFormed(out)) {
     Region clean = region;
     ClipperLib::CleanPolygons(clean, 2.0);
+    clean = outerRingsFirst(clean);
     out = grow(clean);
     if (!out.empty() && !wellFormed(out)) out = evenOdd(out);
     if ((out.empty() && lost) || !wellFormed(out)) ++clipper_failures;
