@@ -31,12 +31,13 @@ class InProcessStock {
   InProcessStock(const InProcessStock&) = delete;
   InProcessStock& operator=(const InProcessStock&) = delete;
 
-  // Takes away what `path` cuts (every kind of move; `tools` by id).
+  // Takes away what `path` cuts (every kind of move; `tools` by id), each tool eroded by half a cell's diagonal: a
+  // film up to that thick stays on what it cut, and nothing a ray passes by is taken.
   void remove(const Toolpath& path, const std::vector<Tool>& tools);
 
   // The material between heights lo and hi of `frame` (its z) for each slab, projected on the frame's x-y plane and
-  // grown by a cell and a half (a column of the lattice is a cell wide, and its projection is rasterised): a
-  // superset of the material there, part included.
+  // grown by a cell (remove keeps every point of material within half a cell's diagonal of a ray's material, and its
+  // projection is rasterised): a superset of the material there, part included.
   std::vector<Region> slabs(const SetupFrame& frame, const std::vector<std::pair<double, double>>& slabs) const;
 
   double cell() const;      // the lattice's largest spacing, mm
