@@ -5,7 +5,7 @@
 //  2. the whole stage as `art2part plan` runs it (visibility at level 3, 3-axis setups, roughing with the tools' own
 //     step-downs and rest passes), judged by the verification: gouges, collisions, stock removed, leftover; once
 //     3-axis and once with 5-axis voxel roughing after each setup's 3-axis operations (the same setups), side by side.
-//   bench_roughing [PART]   (a file name in shared/parts; default all)
+//   bench_roughing [PART] [--one-setup]   (a file name in shared/parts, or "all"; --one-setup: table 1 only)
 #include <chrono>
 #include <cstdio>
 #include <string>
@@ -88,8 +88,9 @@ void benchPlan(const std::string& name, const Part& part, const SetupPlan& setup
 int main(int argc, char** argv) {
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   std::vector<std::string> parts;
-  if (argc > 1) parts.push_back(argv[1]);
+  if (argc > 1 && std::string(argv[1]) != "all") parts.push_back(argv[1]);
   else parts.assign(std::begin(kAll), std::end(kAll));
+  const bool one_setup = argc > 2 && std::string(argv[2]) == "--one-setup";
   const ToolLibrary library = loadToolLibrary(kTools);
   std::vector<Part> loaded;
   for (const std::string& name : parts) loaded.push_back(loadPart(kParts + "/" + name));
@@ -99,6 +100,7 @@ int main(int argc, char** argv) {
               "choose", "rough s", "rings/s", "cut mm", "rapid mm", "points");
   for (std::size_t i = 0; i < parts.size(); ++i) benchOneSetup(parts[i], loaded[i], library);
 
+  if (one_setup) return 0;
   std::printf("\nthe stage: level-3 visibility, 3-axis setups, roughing + rest passes, verified\n");
   std::printf("%-40s %-5s %3s %3s %7s %9s %7s %3s %3s %7s %9s %6s  %s\n", "part", "mode", "set", "ops", "plan s",
               "cut mm", "est s", "gou", "col", "removed", "left mm3", "max", "tools");
