@@ -22,8 +22,10 @@ VerifyOptions verifyOptionsFrom(const Arguments& a) {
   options.tolerance = a.number("tolerance", options.tolerance);
   options.stock_margin = a.number("stock-margin", options.stock_margin);
   options.threads = a.integer("threads", 0);
-  if (options.resolution < 0.0 || options.tolerance < 0.0 || options.stock_margin < 0.0 || options.threads < 0)
-    throw UsageError("--resolution, --tolerance, --stock-margin and --threads must not be negative");
+  options.max_listed = a.integer("max-listed", options.max_listed);
+  if (options.resolution < 0.0 || options.tolerance < 0.0 || options.stock_margin < 0.0 || options.threads < 0 ||
+      options.max_listed < 0)
+    throw UsageError("--resolution, --tolerance, --stock-margin, --threads and --max-listed must not be negative");
   return options;
 }
 
@@ -45,7 +47,7 @@ void writeStockOutputs(const Arguments& a, const Mesh& part, const VerificationS
 int runVerify(const std::vector<std::string>& args) {
   const Arguments a(args, {},
                     {"part", "resolution", "tolerance", "stock-margin", "stock", "picture", "stock-out", "threads",
-                     "units"});
+                     "units", "max-listed"});
   const std::string dir = a.requirePositional(1, "one plan folder: art2part verify DIR");
   VerifyOptions options = verifyOptionsFrom(a);
   const Toolpath path = readToolpathsCsv(dir + "/toolpaths.csv");
