@@ -118,10 +118,9 @@ bool erodedTool(const Tool& tool, double by, Tool& eroded) {
 
 }  // namespace
 
-
 // What a tool eroded by half a cell's diagonal takes from a ray, the real tool takes from the whole cell around it:
 // so every point of material left lies within half a cell's diagonal of material left on a ray, and the slabs need
-// grow by one cell only. Sweeping the real tool instead took away, between rays, corners it rounds off and walls it
+// to grow by one cell only. Sweeping the real tool instead took away, between rays, corners it rounds off and walls it
 // passes by (CTC-02: a later setup's holder met such remnants 0.42 mm deep, 473 collisions, with two cells grown);
 // a tool thinner than a cell takes nothing from the model.
 void InProcessStock::remove(const Toolpath& path, const std::vector<Tool>& tools) {
