@@ -59,7 +59,6 @@ class RegionLocator {
   RegionLocator() = default;
   explicit RegionLocator(const Region& region);
   bool contains(const Point2& p) const;
-  bool empty() const { return bands_.empty(); }
 
  private:
   struct Edge {

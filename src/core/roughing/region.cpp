@@ -139,9 +139,6 @@ Region unite(const Region& a, const Region& b) { return clip(a, b, ClipperLib::c
 Region subtract(const Region& a, const Region& b) { return clip(a, b, ClipperLib::ctDifference); }
 Region intersect(const Region& a, const Region& b) { return clip(a, b, ClipperLib::ctIntersection); }
 
-// Round joins are flattened into chords whose vertices lie on the true arc. The default, 5 um, is far inside the
-// finishing allowance that forbidden regions keep, and gives 99 vertices per full turn of a 10 mm radius instead of
-// 222 at 1 um (offsets are most of roughing's time).
 namespace {
 
 // ClipperOffset's notion of the lowest vertex: largest y, then smallest x.
@@ -178,6 +175,9 @@ Region outerRingsFirst(const Region& region) {
 
 }  // namespace
 
+// Round joins are flattened into chords whose vertices lie on the true arc. The default, 5 um, is far inside the
+// finishing allowance that forbidden regions keep, and gives 99 vertices per full turn of a 10 mm radius instead of
+// 222 at 1 um (offsets are most of roughing's time).
 Region offsetRegion(const Region& given, double mm, double arc_tolerance) {
   if (given.empty()) return {};
   const Region region = outerRingsFirst(given);

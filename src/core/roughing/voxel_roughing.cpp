@@ -28,8 +28,7 @@ struct Slab {
   Region part;        // the part's section in the slab, grown by the allowance
   Region material;    // remaining - part: what this operation is for
   bool has_material = false;
-  Region near_shank, near_holder;
-  RegionLocator in_near_shank, in_near_holder;
+  RegionLocator near_shank, near_holder;  // material grown by the shank's, the holder's radius (and the margin)
 };
 
 struct Voxel {
@@ -97,10 +96,8 @@ void buildSlabs(Context& c, const std::vector<SlabState>& left, const Tool& tool
       slab.material = dropSlivers(subtract(slab.remaining, slab.part), 1.0);
       slab.has_material = !regionEmpty(slab.material);
     }
-    slab.near_shank = growForBody(slab.material, bodyRadius(tool, false) + c.options.holder_margin);
-    slab.near_holder = growForBody(slab.material, bodyRadius(tool, true) + c.options.holder_margin);
-    slab.in_near_shank = RegionLocator(slab.near_shank);
-    slab.in_near_holder = RegionLocator(slab.near_holder);
+    slab.near_shank = RegionLocator(growForBody(slab.material, bodyRadius(tool, false) + c.options.holder_margin));
+    slab.near_holder = RegionLocator(growForBody(slab.material, bodyRadius(tool, true) + c.options.holder_margin));
     c.slabs.push_back(std::move(slab));
   };
   for (std::size_t i = 0; i < order.size();) {
@@ -164,7 +161,7 @@ bool clearOfStockAbove(const Context& c, const Tool& tool, std::size_t slab_inde
     const double h = (0.5 * (slab.z + slab.top) - tip_frame.z()) / axis_frame.z();
     if (h <= tool.flute_length) continue;
     const Vec3 at = tip_frame + h * axis_frame;
-    const RegionLocator& near = h <= tool.stickout ? slab.in_near_shank : slab.in_near_holder;
+    const RegionLocator& near = h <= tool.stickout ? slab.near_shank : slab.near_holder;
     if (near.contains(Point2(at.x(), at.y()))) return false;
   }
   return true;
