@@ -51,6 +51,9 @@ void checkPartSize(const Box& box, const std::string& where);
 // What a user should know about a loaded part: an open or non-manifold mesh, several bodies. One line each.
 std::vector<std::string> partWarnings(const Part& part);
 
+// The triangles of each face (part.faces order), ascending; triangles whose face id is out of range belong to none.
+std::vector<std::vector<int>> faceTriangles(const Part& part);
+
 double lengthUnitToMm(LengthUnit unit);
 LengthUnit parseLengthUnit(const std::string& text);  // mm, in|inch, m, auto; throws InputError
 

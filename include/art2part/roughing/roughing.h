@@ -69,8 +69,17 @@ struct RoughingOperation {
   int direct_levels = 0;      // levels whose grown forbidden region missed part of the shadow (taken directly there)
 };
 
+// The stock left in one slab [z, top] of a setup frame (part section included), projected along the direction.
+struct SlabState {
+  double z = 0, top = 0;
+  Region remaining;           // stock left in the slab [z, top] after the operation (part section included)
+};
+
 struct RoughingPlan {
   std::vector<RoughingOperation> operations;
+  // Per setup (index as in the setup plan), in its frame: the stock its 3-axis operations left, slab by slab from the
+  // top (empty for a setup with no operation). What finishing must still expect in the way of shanks and rapids.
+  std::vector<std::vector<SlabState>> stock_left;
   double seconds = 0;
   int contours = 0;           // rings of centre regions over all levels
   int closed_open_mesh_edges = 0;  // the part's mesh was open: the edges of its boundary, closed (solid_closure.h)
@@ -80,10 +89,6 @@ struct RoughingPlan {
 
 // One operation: `tool` clears the stock of one setup top-down; `before`, if given, is what a previous operation
 // left (per level of `before_levels`, remaining stock regions) and restricts this one to it.
-struct SlabState {
-  double z = 0, top = 0;
-  Region remaining;           // stock left in the slab [z, top] after the operation (part section included)
-};
 // `in_process`, if given, is the stock as earlier setups left it (the block otherwise).
 class InProcessStock;
 RoughingOperation roughSetup(const Part& part, const Setup& setup, int setup_index, const Tool& tool,
@@ -96,7 +101,9 @@ std::vector<RoughingLevel> roughingLevels(const Part& part, const std::vector<Ve
                                           double stock_top, double stock_bottom, double stepdown,
                                           const RoughingOptions& options);
 
-// The tools a roughing operation may use (flat and bull end mills), largest first; and the choice for one setup.
+// The tools a roughing operation may use (flat and bull end mills with flutes up to kRoughingFluteRatio diameters),
+// largest first; and the choice for one setup.
+constexpr double kRoughingFluteRatio = 3.0;
 std::vector<const Tool*> roughingTools(const ToolLibrary& library);
 const Tool* chooseRoughingTool(const Part& part, const Setup& setup, const std::vector<const Tool*>& candidates,
                                const RoughingOptions& options, const InProcessStock* in_process = nullptr);

@@ -10,6 +10,16 @@
 
 namespace art2part {
 
+std::vector<std::vector<int>> faceTriangles(const Part& part) {
+  std::vector<std::vector<int>> out(part.faces.size());
+  const int n = std::min<int>(part.mesh.triangleCount(), static_cast<int>(part.triangle_face.size()));
+  for (int t = 0; t < n; ++t) {
+    const int f = part.triangle_face[t];
+    if (f >= 0 && f < static_cast<int>(out.size())) out[f].push_back(t);
+  }
+  return out;
+}
+
 double lengthUnitToMm(LengthUnit unit) {
   switch (unit) {
     case LengthUnit::Inch: return 25.4;

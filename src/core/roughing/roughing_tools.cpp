@@ -14,8 +14,11 @@ namespace art2part {
 
 std::vector<const Tool*> roughingTools(const ToolLibrary& library) {
   std::vector<const Tool*> tools;
+  // Rigid tools only: a long-series end mill (flutes beyond kRoughingFluteRatio diameters) deflects under full-width
+  // cuts; it is a finishing tool for deep walls.
   for (const Tool& t : library.tools)
-    if (t.type == ToolType::Flat || t.type == ToolType::Bull) tools.push_back(&t);
+    if ((t.type == ToolType::Flat || t.type == ToolType::Bull) && t.flute_length <= kRoughingFluteRatio * t.diameter)
+      tools.push_back(&t);
   std::stable_sort(tools.begin(), tools.end(), [](const Tool* a, const Tool* b) {
     if (a->diameter != b->diameter) return a->diameter > b->diameter;
     return a->type == ToolType::Flat && b->type != ToolType::Flat;  // a flat mill clears closer to a floor
@@ -125,6 +128,7 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
   std::unique_ptr<InProcessStock> in_process;
   if (options.in_process_stock && setups.setups.size() > 1)
     in_process = std::make_unique<InProcessStock>(part, roughingStock(part, options), options.in_process_rays);
+  plan.stock_left.resize(setups.setups.size());
   for (int k = 0; k < static_cast<int>(setups.setups.size()); ++k) {
     if (progress) progress(k, plan);
     // What the earlier setups cut is gone from the stock this one starts from.
@@ -157,6 +161,7 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
       left = std::move(still);
       previous = rest;
     }
+    plan.stock_left[k] = left;
     // 5-axis voxel roughing over what the 3-axis operations left, with a flat mill of the rest tool's size class
     // (at most half the main tool: what the main tool could not reach upright, it rarely reaches leaning over).
     if (options.five_axis) {

@@ -8,9 +8,6 @@
 
 namespace art2part::setup_detail {
 
-// The triangles of each face (part.faces order); triangles whose face id is out of range belong to none.
-std::vector<std::vector<int>> faceTriangles(const Part& part);
-
 // A flat face that some direction sees whole and square (3.3.2): the "2" entries of the multi-valued matrix.
 struct SquareFace {
   int face = -1;

@@ -34,16 +34,6 @@ void keepSquare(Cone& cone, const std::vector<Vec3>& directions, const Vec3& nor
 
 }  // namespace
 
-std::vector<std::vector<int>> faceTriangles(const Part& part) {
-  std::vector<std::vector<int>> out(part.faces.size());
-  const int n = std::min<int>(part.mesh.triangleCount(), static_cast<int>(part.triangle_face.size()));
-  for (int t = 0; t < n; ++t) {
-    const int f = part.triangle_face[t];
-    if (f >= 0 && f < static_cast<int>(out.size())) out[f].push_back(t);
-  }
-  return out;
-}
-
 std::vector<SquareFace> squareFaces(const Part& part, const VisibilityResult& visibility,
                                     const std::vector<std::vector<int>>& face_triangles, const SetupOptions& options) {
   std::vector<SquareFace> out;

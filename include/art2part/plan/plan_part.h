@@ -1,0 +1,72 @@
+// The whole pipeline as one call, without ROS: visibility -> setups -> holes -> roughing -> finishing -> verification
+// (thesis chapters 3-4: from the part to a finished part's toolpaths, checked by simulation). The CLI's `plan` and
+// the nodes call this; nothing else strings the stages together.
+//
+// Holes a drill or a helix makes are found first and kept out of roughing (their volume is added to the solid the
+// roughing sees), so the drill meets solid stock. The combined toolpath runs setup by setup: each setup's roughing,
+// then its finishing (each setup's points together, as the post needs), operation numbers across both.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "art2part/common/progress.h"
+#include "art2part/finishing/finishing.h"
+#include "art2part/roughing/roughing.h"
+#include "art2part/setup/setup_plan.h"
+#include "art2part/simulation/verify.h"
+#include "art2part/visibility/analysis.h"
+
+namespace art2part {
+
+struct PlanOptions {
+  VisibilityOptions visibility;
+  SetupOptions setups;
+  RoughingOptions roughing;
+  FinishingOptions finishing;  // its mode and allowance follow setups.mode and roughing.allowance
+  bool finish = true;          // false: the plan stops after roughing
+  bool verify = true;          // simulate the whole path (verification.resolution 0: max(0.4, automatic, diagonal/300))
+  VerifyOptions verification;
+};
+
+// One operation of the combined plan, as plan.json lists it.
+struct PlanOperation {
+  int index = 0;               // position in the combined path (toolpaths.csv's op)
+  int setup = 0;
+  std::string kind;            // roughing | rest roughing | 5-axis roughing | face_mill | side_mill | contour | drill |
+                               // helix | surface_3axis | surface_5axis | rest
+  std::string tool;
+  bool finishing = false;
+  int source = -1;             // index into RoughingPlan::operations or FinishingPlan::operations
+  std::size_t first_point = 0, points = 0;  // rows of the combined toolpath
+};
+
+struct PlanResult {
+  VisibilityResult visibility;
+  SetupPlan setups;
+  std::vector<Hole> holes;
+  std::vector<HoleMachining> hole_methods;
+  RoughingPlan roughing;
+  FinishingPlan finishing;
+  std::vector<PlanOperation> operations;  // setup by setup: its roughing, then its finishing
+  Toolpath toolpath;                      // every operation's points in that order, op numbers set
+  std::vector<Tool> tools;                // every tool the path uses, in order of first use (tools.json)
+  bool verified = false;
+  VerificationReport verification;
+  VerificationState simulation;           // the simulated stock, for pictures of what is left
+  std::vector<std::pair<std::string, double>> timings;  // stage, seconds, in order
+  bool cancelled = false;                 // the progress sink asked to stop: the stages finished so far are kept
+};
+
+// Throws InputError for options out of range or a tool library without the tools roughing needs.
+PlanResult planPart(const Part& part, const ToolLibrary& library, const PlanOptions& options = {},
+                    const ProgressSink& progress = {});
+
+// The part with the holes a drill or a helix makes filled (holePlugs), for roughing: triangles appended in face -1.
+Part pluggedPart(const Part& part, const std::vector<Hole>& holes, const std::vector<HoleMachining>& methods);
+
+// The verification lattice a plan uses when none is asked for: at least 0.4 mm and 1/300 of the part's diagonal.
+double planVerifyResolution(const Box& part_box);
+
+}  // namespace art2part

@@ -1,0 +1,192 @@
+// Strategy, setup and direction per face (face_assignment.h).
+#include "art2part/finishing/face_assignment.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "art2part/finishing/admissible.h"
+#include "art2part/visibility/cones.h"
+
+namespace art2part {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kSameDirection = 0.01 * kPi / 180;  // a sampled direction this close is the face's own
+
+// A direction the plan offers: a setup's, or in 5-axis mode a face's own sampled direction within a setup's tilt.
+struct Offer {
+  int setup = -1;
+  int index = -1;  // into visibility.directions
+  Vec3 d = Vec3::UnitZ();
+};
+
+// The sampled direction closest to `d` if within kSameDirection (special directions sit exactly on plane normals and
+// axes), else -1.
+int sampledIndex(const DirectionSet& directions, const Vec3& d) {
+  int best = -1;
+  double best_dot = std::cos(kSameDirection);
+  for (int i = 0; i < directions.size(); ++i) {
+    const double c = directions.directions[i].dot(d);
+    if (c >= best_dot) best_dot = c, best = i;
+  }
+  return best;
+}
+
+// The offers for a face's own direction `d`: every setup direction within the tilt (5-axis), the nearest first.
+std::vector<Offer> ownDirectionOffers(const SetupPlan& setups, const DirectionSet& directions, const Vec3& d,
+                                      const FinishingOptions& options) {
+  std::vector<Offer> out;
+  if (options.mode != MachineMode::FiveAxis) return out;
+  const int index = sampledIndex(directions, d);
+  if (index < 0) return out;
+  const double tilt = setups.max_tilt_deg * kPi / 180;
+  for (int k = 0; k < static_cast<int>(setups.setups.size()); ++k)
+    if (std::acos(std::clamp(setups.setups[k].frame.z.dot(d), -1.0, 1.0)) <= tilt + 1e-9) out.push_back({k, index, d});
+  std::sort(out.begin(), out.end(), [&](const Offer& a, const Offer& b) {
+    return setups.setups[a.setup].frame.z.dot(d) > setups.setups[b.setup].frame.z.dot(d);
+  });
+  return out;
+}
+
+double extentAlong(const Mesh& mesh, const std::vector<int>& triangles, const Vec3& d) {
+  double lo = 1e300, hi = -1e300;
+  for (int t : triangles)
+    for (int c = 0; c < 3; ++c) {
+      const double z = mesh.corner(t, c).dot(d);
+      lo = std::min(lo, z);
+      hi = std::max(hi, z);
+    }
+  return hi - lo;
+}
+
+double leastDot(const AdmissibleSet& surface, const Vec3& d) {
+  double least = 1;
+  for (const Vec3& n : surface.normals) least = std::min(least, n.dot(d));
+  return least;
+}
+
+std::string mm(double v) {
+  std::ostringstream s;
+  s.precision(v < 10 ? 2 : 3);
+  s << v;
+  return s.str() + " mm";
+}
+
+}  // namespace
+
+std::vector<FaceAssignment> assignFaces(const Part& part, const VisibilityResult& visibility, const SetupPlan& setups,
+                                        const std::vector<Hole>& holes, const std::vector<HoleMachining>& methods,
+                                        double longest_flutes, const FinishingOptions& options) {
+  if (visibility.map.triangles() != part.mesh.triangleCount())
+    throw InputError("finishing: the visibility map has " + std::to_string(visibility.map.triangles()) +
+                     " triangles but the part has " + std::to_string(part.mesh.triangleCount()));
+  const DirectionSet& directions = visibility.directions;
+  const double tolerance = options.planar.square_angle_deg * kPi / 180;
+  const std::vector<std::vector<int>> triangles = faceTriangles(part);
+  std::vector<Offer> setup_offers;
+  for (int k = 0; k < static_cast<int>(setups.setups.size()); ++k)
+    setup_offers.push_back({k, setups.setups[k].direction, setups.setups[k].frame.z});
+  // Faces of holes a drill or a helix makes.
+  std::vector<int> hole_of(part.faces.size(), -1);
+  for (int h = 0; h < static_cast<int>(holes.size()); ++h)
+    if (h < static_cast<int>(methods.size()) && methods[h].method != HoleMethod::None)
+      for (int f : holes[h].faces)
+        if (f >= 0 && f < static_cast<int>(hole_of.size())) hole_of[f] = h;
+
+  std::vector<FaceAssignment> out(part.faces.size());
+  for (int f = 0; f < static_cast<int>(part.faces.size()); ++f) {
+    FaceAssignment& a = out[f];
+    a.face = f;
+    const std::vector<int>& tris = triangles[f];
+    if (tris.empty()) {
+      a.reason = "no triangles";
+      continue;
+    }
+    const Cone accessible = commonCone(visibility.map, tris);
+    auto sees = [&](const Offer& o) { return o.index >= 0 && o.index < directions.size() && coneHas(accessible, o.index); };
+    auto take = [&](FinishingKind kind, const Offer& o) {
+      a.kind = kind;
+      a.setup = o.setup;
+      a.direction = o.d;
+      return true;
+    };
+    // Holes: along the hole's axis, from a setup that sees the hole's faces whole along it.
+    if (hole_of[f] >= 0) {
+      const Hole& hole = holes[hole_of[f]];
+      std::vector<Offer> offers;
+      for (const Offer& o : setup_offers)
+        if (o.d.dot(hole.axis) >= std::cos(options.holes.axis_tolerance_deg * kPi / 180)) offers.push_back(o);
+      for (const Offer& o : ownDirectionOffers(setups, directions, hole.axis, options)) offers.push_back(o);
+      bool done = false;
+      for (const Offer& o : offers)
+        if (sees(o) || o.index < 0) {  // a hole's bottom faces may be unseen by the sampled visibility: the axis rules
+          done = take(methods[hole_of[f]].method == HoleMethod::Drill ? FinishingKind::Drill : FinishingKind::Helix, o);
+          a.hole = hole_of[f];
+          break;
+        }
+      if (done) continue;
+      a.note = "its hole's axis is no setup direction";
+    }
+    const std::vector<AdmissibleSet> sets = admissibleSets(part, f, tris);
+    bool done = false;
+    for (const AdmissibleSet& set : sets) {
+      if (done) break;
+      std::vector<Offer> offers;
+      for (const Offer& o : setup_offers)
+        if (admits(set, o.d, tolerance)) offers.push_back(o);
+      if (set.freedom == Freedom::Zero)
+        for (const Offer& o : ownDirectionOffers(setups, directions, set.axis, options)) offers.push_back(o);
+      if (set.kind == FinishingKind::FaceMill || set.kind == FinishingKind::Contour) {
+        for (const Offer& o : offers)
+          if (sees(o)) {
+            done = take(set.kind, o);
+            a.depth = set.kind == FinishingKind::Contour ? extentAlong(part.mesh, tris, o.d) : 0;
+            break;
+          }
+      } else if (set.kind == FinishingKind::SideMill) {
+        // The least depth first (4.3.1), and only depths some flat end mill's flutes reach.
+        const Offer* best = nullptr;
+        double best_depth = 1e300;
+        for (const Offer& o : offers) {
+          const double depth = extentAlong(part.mesh, tris, o.d);
+          if (sees(o) && depth < best_depth) best_depth = depth, best = &o;
+        }
+        if (best && best_depth <= longest_flutes) {
+          done = take(set.kind, *best);
+          a.depth = best_depth;
+        } else if (best) {
+          a.note = "parallel to a setup direction but " + mm(best_depth) + " deep, beyond every flat end mill's " +
+                   mm(longest_flutes) + " of flutes";
+        }
+      } else {  // 2-DOF surface finishing: the setup meeting the face most squarely, whole if one sees it whole
+        const Offer* best = nullptr;
+        double best_score = -1e300;
+        bool best_whole = false;
+        for (const Offer& o : setup_offers) {
+          if (!admits(set, o.d, tolerance)) continue;
+          const bool whole = sees(o);
+          int seen = 0;
+          for (int t : tris) seen += visibility.map.bits.get(t, o.index) ? 1 : 0;
+          if (seen == 0) continue;
+          const double score = (whole ? 10.0 : 0.0) + leastDot(set, o.d) + static_cast<double>(seen) / tris.size();
+          if (score > best_score) best_score = score, best = &o, best_whole = whole;
+        }
+        if (best) {
+          done = take(options.mode == MachineMode::FiveAxis ? FinishingKind::Surface5Axis : FinishingKind::Surface3Axis,
+                      *best);
+          a.whole = best_whole;
+          if (a.note.empty() && (part.faces[f].type == SurfaceType::Plane || part.faces[f].type == SurfaceType::Cylinder))
+            a.note = part.faces[f].type == SurfaceType::Plane
+                         ? "square to no setup direction and parallel to none within reach: surface finishing"
+                         : "its axis is no setup direction: surface finishing";
+        }
+      }
+    }
+    if (!done) a.reason = "no permissible direction: no setup direction both admits the face and sees it";
+  }
+  return out;
+}
+
+}  // namespace art2part

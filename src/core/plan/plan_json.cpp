@@ -1,0 +1,145 @@
+// plan.json (plan_json.h).
+#include "art2part/plan/plan_json.h"
+
+#include <cmath>
+
+#include "art2part/setup/setup_report.h"
+
+namespace art2part {
+
+namespace {
+
+nlohmann::json vec(const Vec3& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); }
+
+nlohmann::json partJson(const Part& part) {
+  const Box box = boundingBox(part.mesh);
+  return {{"source", part.source},
+          {"triangles", part.mesh.triangleCount()},
+          {"faces", part.faces.size()},
+          {"bounding_box", {{"min", vec(box.min)}, {"max", vec(box.max)}}}};
+}
+
+nlohmann::json operationJson(const PlanResult& plan, const PlanOperation& op) {
+  nlohmann::json j = {{"index", op.index}, {"setup", op.setup}, {"kind", op.kind}, {"tool", op.tool},
+                      {"points", op.points}, {"stage", op.finishing ? "finishing" : "roughing"}};
+  if (!op.finishing) {
+    const RoughingOperation& r = plan.roughing.operations.at(op.source);
+    int critical = 0;
+    for (const RoughingLevel& l : r.levels) critical += l.critical ? 1 : 0;
+    j.update({{"length_mm", r.feed_mm}, {"rapid_mm", r.rapid_mm}, {"time_s", r.seconds}, {"levels", r.levels.size()},
+              {"critical_levels", critical}, {"ramps", r.ramps}, {"plunges", r.plunges}, {"retracts", r.retracts},
+              {"plan_seconds", r.plan_seconds}, {"direct_shadow_levels", r.direct_levels}});
+  } else {
+    const FinishingOperation& f = plan.finishing.operations.at(op.source);
+    j.update({{"length_mm", f.feed_mm}, {"rapid_mm", f.rapid_mm}, {"time_s", f.seconds}, {"faces", f.faces},
+              {"direction", vec(f.direction)}, {"plan_seconds", f.plan_seconds}});
+    if (!f.note.empty()) j["note"] = f.note;
+  }
+  return j;
+}
+
+}  // namespace
+
+nlohmann::json holeJson(const Hole& hole, const HoleMachining& method) {
+  nlohmann::json segments = nlohmann::json::array();
+  for (const HoleSegment& s : hole.segments)
+    segments.push_back({{"kind", holeSegmentKindName(s.kind)}, {"face", s.face}, {"from", s.from}, {"to", s.to},
+                        {"diameter_from", s.diameter_from}, {"diameter_to", s.diameter_to}});
+  return {{"axis", vec(hole.axis)},
+          {"mouth", vec(hole.mouth)},
+          {"diameter", hole.diameter},
+          {"depth", hole.depth},
+          {"total_depth", hole.total_depth},
+          {"bottom", holeBottomName(hole.bottom)},
+          {"point_angle_deg", hole.point_angle_deg},
+          {"counterbore", {{"diameter", hole.counterbore_diameter}, {"depth", hole.counterbore_depth}}},
+          {"countersink", {{"angle_deg", hole.countersink_angle_deg}, {"diameter", hole.countersink_diameter}}},
+          {"signature", hole.signature},
+          {"faces", hole.faces},
+          {"segments", segments},
+          {"method", holeMethodName(method.method)},
+          {"tool", method.drill},
+          {"spot", method.spot},
+          {"peck", method.peck},
+          {"reason", method.reason}};
+}
+
+nlohmann::json faceFinishJson(const Part& part, const FaceFinish& face) {
+  nlohmann::json j = {{"face", face.face},
+                      {"type", surfaceTypeName(part.faces.at(face.face).type)},
+                      {"area_mm2", face.area_mm2},
+                      {"status", faceStatusName(face.status)},
+                      {"operations", face.operations},
+                      {"tools", face.tools},
+                      {"planned_mm2", face.planned_mm2}};
+  if (face.setup >= 0) {
+    j["strategy"] = finishingKindName(face.strategy);
+    j["setup"] = face.setup;
+    j["direction"] = vec(face.direction);
+  }
+  if (face.radius_needed_mm >= 0) j["radius_needed_mm"] = face.radius_needed_mm;
+  if (!face.reason.empty()) j["reason"] = face.reason;
+  return j;
+}
+
+nlohmann::json verificationJson(const VerificationReport& report) {
+  return {{"gouges", report.gouges},
+          {"collisions", report.collisions},
+          {"passed", report.passed()},
+          {"worst_gouge_mm", report.worst_gouge_mm},
+          {"worst_collision_mm", report.worst_collision_mm},
+          {"stock_volume_mm3", report.stock_volume_mm3},
+          {"part_volume_mm3", report.part_volume_mm3},
+          {"removed_volume_mm3", report.removed_volume_mm3},
+          {"remaining_volume_mm3", report.remaining_volume_mm3},
+          {"leftover_volume_mm3", report.leftover_volume_mm3},
+          {"leftover_max_mm", report.leftover_max_mm},
+          {"resolution_mm", report.resolution_mm},
+          {"open_mesh_closed_edges", report.closed_open_mesh_edges},
+          {"seconds", report.seconds_total}};
+}
+
+nlohmann::json planJson(const Part& part, const PlanResult& plan) {
+  nlohmann::json j = setupPlanJson(plan.setups, plan.visibility.directions);
+  j["setup_seconds"] = j["seconds"];
+  j.erase("seconds");
+  j["part"] = partJson(part);
+  nlohmann::json directions = nlohmann::json::array();
+  for (const Vec3& d : plan.visibility.directions.directions) directions.push_back(vec(d));
+  j["directions"] = directions;
+  j["operations"] = nlohmann::json::array();
+  for (const PlanOperation& op : plan.operations) j["operations"].push_back(operationJson(plan, op));
+  j["roughing_region_failures"] = plan.roughing.region_failures;
+  j["roughing_direct_shadow_levels"] = plan.roughing.direct_levels;
+
+  nlohmann::json faces = nlohmann::json::array();
+  std::map<std::string, int> by_status;
+  for (const FaceFinish& f : plan.finishing.faces) {
+    faces.push_back(faceFinishJson(part, f));
+    ++by_status[faceStatusName(f.status)];
+  }
+  j["faces"] = faces;
+  nlohmann::json holes = nlohmann::json::array();
+  for (std::size_t h = 0; h < plan.holes.size(); ++h)
+    holes.push_back(holeJson(plan.holes[h], h < plan.hole_methods.size() ? plan.hole_methods[h] : HoleMachining{}));
+  j["holes"] = holes;
+  double roughing_s = 0;
+  for (const RoughingOperation& op : plan.roughing.operations) roughing_s += op.seconds;
+  j["finishing"] = {{"faces_by_status", by_status},
+                    {"tool_changes_per_setup", plan.finishing.tool_changes_per_setup},
+                    {"tool_changes", plan.finishing.tool_changes},
+                    {"seconds", plan.finishing.seconds},
+                    {"plan_seconds", plan.finishing.plan_seconds},
+                    {"cancelled", plan.finishing.cancelled}};
+  j["machining_time"] = {{"roughing_s", roughing_s},
+                         {"finishing_s", plan.finishing.seconds},
+                         {"total_s", roughing_s + plan.finishing.seconds}};
+  j["verification"] = plan.verified ? verificationJson(plan.verification) : nlohmann::json(nullptr);
+  nlohmann::json timings = nlohmann::json::object();
+  for (const auto& [stage, seconds] : plan.timings) timings[stage] = seconds;
+  j["timings"] = timings;
+  j["cancelled"] = plan.cancelled;
+  return j;
+}
+
+}  // namespace art2part

@@ -1,0 +1,153 @@
+// The pipeline in one call (plan_part.h).
+#include "art2part/plan/plan_part.h"
+
+#include <algorithm>
+#include <chrono>
+#include <sstream>
+#include <stdexcept>
+
+namespace art2part {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// The tools the path uses, in order of first use.
+std::vector<Tool> toolsUsed(const Toolpath& path, const ToolLibrary& library) {
+  std::vector<Tool> tools;
+  for (const CutterLocation& c : path)
+    if (std::none_of(tools.begin(), tools.end(), [&](const Tool& t) { return t.id == c.tool; })) {
+      const Tool* t = library.find(c.tool);
+      if (!t) throw InputError("plan: tool '" + c.tool + "' is not in the tool library");
+      tools.push_back(*t);
+    }
+  return tools;
+}
+
+// Setup by setup: its roughing, then its finishing.
+void combine(PlanResult& r) {
+  const int setups = static_cast<int>(r.setups.setups.size());
+  for (int k = 0; k < setups; ++k) {
+    auto append = [&](const Toolpath& path, const std::string& kind, const std::string& tool, bool finishing,
+                      int source) {
+      if (path.empty()) return;
+      PlanOperation op;
+      op.index = static_cast<int>(r.operations.size());
+      op.setup = k;
+      op.kind = kind;
+      op.tool = tool;
+      op.finishing = finishing;
+      op.source = source;
+      op.first_point = r.toolpath.size();
+      op.points = path.size();
+      for (CutterLocation c : path) {
+        c.op = op.index;
+        r.toolpath.push_back(std::move(c));
+      }
+      r.operations.push_back(op);
+    };
+    for (int i = 0; i < static_cast<int>(r.roughing.operations.size()); ++i) {
+      const RoughingOperation& op = r.roughing.operations[i];
+      if (op.setup == k) append(op.path, op.kind, op.tool, false, i);
+    }
+    for (int i = 0; i < static_cast<int>(r.finishing.operations.size()); ++i) {
+      const FinishingOperation& op = r.finishing.operations[i];
+      if (op.setup == k) append(op.path, finishingKindName(op.kind), op.tool, true, i);
+    }
+  }
+}
+
+}  // namespace
+
+double planVerifyResolution(const Box& box) { return std::max({0.4, automaticResolution(box), box.diagonal() / 300}); }
+
+Part pluggedPart(const Part& part, const std::vector<Hole>& holes, const std::vector<HoleMachining>& methods) {
+  const Mesh plugs = holePlugs(holes, methods);
+  if (plugs.triangles.empty()) return part;
+  Part out = part;
+  const int base = static_cast<int>(out.mesh.vertices.size());
+  out.mesh.vertices.insert(out.mesh.vertices.end(), plugs.vertices.begin(), plugs.vertices.end());
+  for (const Triangle& t : plugs.triangles) {
+    out.mesh.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    out.triangle_face.push_back(-1);
+  }
+  out.adjacency = buildAdjacency(out.mesh, part.adjacency.sharp_angle);
+  return out;
+}
+
+PlanResult planPart(const Part& part, const ToolLibrary& library, const PlanOptions& options,
+                    const ProgressSink& progress) {
+  PlanResult r;
+  auto stage = [&](const std::string& name, double fraction, const std::string& message) {
+    if (!reportProgress(progress, name, fraction, message)) r.cancelled = true;
+    return !r.cancelled;
+  };
+  auto timed = [&](const std::string& name, Clock::time_point start) { r.timings.emplace_back(name, secondsSince(start)); };
+  const auto all = Clock::now();
+
+  auto start = Clock::now();
+  if (!stage("visibility", 0, "directions and visibility cones")) return r;
+  try {
+    r.visibility = analyseVisibility(part, options.visibility, [&](double f) {
+      return stage("visibility", f, "visibility cones");
+    });
+  } catch (const std::runtime_error&) {
+    if (!r.cancelled) throw;
+    return r;  // the backends stop by throwing when the sink asks them to
+  }
+  timed("visibility", start);
+  if (r.cancelled) return r;
+
+  start = Clock::now();
+  if (!stage("setups", 0, "minimum cover of the visibility cones")) return r;
+  r.setups = planSetups(part, r.visibility, options.setups);
+  timed("setups", start);
+
+  start = Clock::now();
+  FinishingOptions finishing = options.finishing;
+  finishing.mode = options.setups.mode;
+  finishing.allowance = options.roughing.allowance;
+  if (options.finish) {
+    if (!stage("holes", 0, "holes and the drills that make them")) return r;
+    r.holes = findHoles(part, finishing.holes);
+    for (const Hole& h : r.holes) r.hole_methods.push_back(chooseHoleMethod(h, library, finishing.holes));
+  }
+  timed("holes", start);
+
+  start = Clock::now();
+  if (!stage("roughing", 0, "roughing setup 1 of " + std::to_string(r.setups.setups.size()))) return r;
+  const Part rough_part = pluggedPart(part, r.holes, r.hole_methods);
+  r.roughing = planRoughing(rough_part, r.setups, library, options.roughing, [&](int k, const RoughingPlan&) {
+    const int n = static_cast<int>(r.setups.setups.size());
+    stage("roughing", n > 0 ? static_cast<double>(k) / n : 1.0,
+          k < n ? "roughing setup " + std::to_string(k + 1) + " of " + std::to_string(n) : "roughing done");
+  });
+  timed("roughing", start);
+  if (r.cancelled) return r;
+
+  if (options.finish) {
+    start = Clock::now();
+    const FinishingInput input{part, r.visibility, r.setups, r.roughing, r.holes, r.hole_methods, library};
+    r.finishing = planFinishing(input, finishing, progress);
+    r.cancelled = r.cancelled || r.finishing.cancelled;
+    timed("finishing", start);
+  }
+
+  combine(r);
+  r.tools = toolsUsed(r.toolpath, library);
+  if (options.verify && !r.toolpath.empty() && !r.cancelled) {
+    start = Clock::now();
+    stage("verification", 0, "simulating " + std::to_string(r.toolpath.size()) + " moves");
+    VerifyOptions verify = options.verification;
+    if (verify.resolution <= 0) verify.resolution = planVerifyResolution(boundingBox(part.mesh));
+    r.verification = verifyToolpath(part.mesh, part.triangle_face, r.toolpath, r.tools, verify, &r.simulation);
+    r.verified = true;
+    timed("verification", start);
+  }
+  r.timings.emplace_back("total", secondsSince(all));
+  return r;
+}
+
+}  // namespace art2part

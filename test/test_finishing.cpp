@@ -1,0 +1,219 @@
+// Face-based finishing (issue 17): admissible directions, the wall stretches, planar finishing of floors and walls
+// judged by the simulation, every face accounted for.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "art2part/finishing/admissible.h"
+#include "art2part/finishing/face_assignment.h"
+#include "art2part/finishing/planar_finishing.h"
+#include "art2part/simulation/verify.h"
+#include "test_solids.h"
+
+using namespace art2part;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+const std::string kTools = std::string(ART2PART_SOURCE_DIR) + "/config/tools.yaml";
+
+// The face of `part` whose type is `type` and whose normal (plane) or axis (cylinder) is along `d`, at height z along
+// it (planes: the offset), -1 when none.
+int faceWith(const Part& part, SurfaceType type, const Vec3& d, double offset = std::nan("")) {
+  for (int f = 0; f < static_cast<int>(part.faces.size()); ++f) {
+    const Face& face = part.faces[f];
+    if (face.type != type) continue;
+    const Vec3 n = type == SurfaceType::Plane ? face.normal : face.axis;
+    if (std::abs(std::abs(n.dot(d)) - 1) > 1e-9 && type != SurfaceType::Plane) continue;
+    if (type == SurfaceType::Plane && n.dot(d) < 1 - 1e-9) continue;
+    if (!std::isnan(offset) && std::abs(face.offset - offset) > 1e-6) continue;
+    return f;
+  }
+  return -1;
+}
+
+const AdmissibleSet& setOf(const std::vector<AdmissibleSet>& sets, FinishingKind kind) {
+  for (const AdmissibleSet& s : sets)
+    if (s.kind == kind) return s;
+  throw std::runtime_error("no such set");
+}
+
+// A 60 x 40 x 20 block with a 30 x 20 x 8 pocket, corners rounded to 4 mm.
+Part pocketedBlock() {
+  // Tessellated finely: the simulation judges against the mesh, and a round tool leaves R e / r in the corners of a
+  // polygon of chordal error e approximating an arc of radius r.
+  LoadOptions fine;
+  fine.chordal_tolerance = 0.002;
+  fine.angular_tolerance = 0.05;
+  static const Part part =
+      test::stepPart(test::pocketedBlock(Vec3(0, 0, 0), Vec3(60, 40, 20), 30, 20, 8, 4), "pocket", fine);
+  return part;
+}
+
+}  // namespace
+
+TEST(Admissible, PlaneFaceMillsAlongItsNormalAndSideMillsInItsPlane) {
+  const Part part = pocketedBlock();
+  const int top = faceWith(part, SurfaceType::Plane, Vec3::UnitZ(), 20);
+  ASSERT_GE(top, 0);
+  const auto sets = admissibleSets(part, top, faceTriangles(part)[top]);
+  const double tol = 0.1 * kPi / 180;
+  EXPECT_TRUE(admits(setOf(sets, FinishingKind::FaceMill), Vec3::UnitZ(), tol));
+  EXPECT_FALSE(admits(setOf(sets, FinishingKind::FaceMill), Vec3(0.01, 0, 1).normalized(), tol));
+  EXPECT_FALSE(admits(setOf(sets, FinishingKind::FaceMill), -Vec3::UnitZ(), tol));
+  EXPECT_TRUE(admits(setOf(sets, FinishingKind::SideMill), Vec3::UnitX(), tol));
+  EXPECT_TRUE(admits(setOf(sets, FinishingKind::SideMill), Vec3(1, -1, 0).normalized(), tol));
+  EXPECT_FALSE(admits(setOf(sets, FinishingKind::SideMill), Vec3::UnitZ(), tol));
+  // 2-DOF: any direction in the face's front hemisphere (a plane has one normal).
+  EXPECT_TRUE(admits(setOf(sets, FinishingKind::Surface3Axis), Vec3(1, 0, 1).normalized(), tol));
+  EXPECT_TRUE(admits(setOf(sets, FinishingKind::Surface3Axis), Vec3::UnitX(), tol));
+  EXPECT_FALSE(admits(setOf(sets, FinishingKind::Surface3Axis), Vec3(1, 0, -0.1).normalized(), tol));
+}
+
+TEST(Admissible, CylinderContoursAlongItsAxisEitherWayAndNeedsAToolWithinItsRadius) {
+  const Part part = pocketedBlock();
+  const int corner = faceWith(part, SurfaceType::Cylinder, Vec3::UnitZ());
+  ASSERT_GE(corner, 0);
+  const std::vector<int> tris = faceTriangles(part)[corner];
+  const auto sets = admissibleSets(part, corner, tris);
+  const double tol = 0.1 * kPi / 180;
+  EXPECT_TRUE(admits(setOf(sets, FinishingKind::Contour), Vec3::UnitZ(), tol));
+  EXPECT_TRUE(admits(setOf(sets, FinishingKind::Contour), -Vec3::UnitZ(), tol));
+  EXPECT_FALSE(admits(setOf(sets, FinishingKind::Contour), Vec3::UnitX(), tol));
+  EXPECT_TRUE(part.faces[corner].concave);
+  EXPECT_NEAR(concaveRadius(part, corner, tris), 4.0, 1e-6);
+  // The pocket's wall meets its floor at a concave sharp edge: a flat end mill along z lies in the wall's plane.
+  bool concave_edge = false;
+  for (const EdgeCondition& e : edgeConditions(part, faceWith(part, SurfaceType::Plane, Vec3::UnitZ(), 12),
+                                               faceTriangles(part)[faceWith(part, SurfaceType::Plane, Vec3::UnitZ(), 12)]))
+    if (e.klass == EdgeClass::Concave) {
+      concave_edge = true;
+      EXPECT_TRUE(flatMillMakesEdge(e, Vec3::UnitZ(), tol));
+      EXPECT_FALSE(flatMillMakesEdge(e, Vec3(1, 1, 1).normalized(), tol));
+    }
+  EXPECT_TRUE(concave_edge);
+}
+
+TEST(Admissible, PermissibleIsWhatIsAdmissibleAndSeen) {
+  const Part part = pocketedBlock();
+  VisibilityOptions vo;
+  vo.level = 2;
+  const VisibilityResult vis = analyseVisibility(part, vo);
+  const int floor = faceWith(part, SurfaceType::Plane, Vec3::UnitZ(), 12);
+  ASSERT_GE(floor, 0);
+  const std::vector<int> tris = faceTriangles(part)[floor];
+  const Cone seen = commonCone(vis.map, tris);
+  const auto sets = admissibleSets(part, floor, tris);
+  const Cone mill = permissibleCone(setOf(sets, FinishingKind::FaceMill), vis.directions, seen, 0.1 * kPi / 180);
+  ASSERT_EQ(coneSize(mill), 1);  // +z, a special direction of the part, sees the pocket's floor whole
+  for (int d = 0; d < vis.directions.size(); ++d)
+    if (coneHas(mill, d)) EXPECT_GT(vis.directions.directions[d].z(), 1 - 1e-9);
+  // Surface finishing of the floor: every direction that sees it whole and is not behind it (side visibility also
+  // counts directions a hair past its plane).
+  const Cone surface = permissibleCone(setOf(sets, FinishingKind::Surface3Axis), vis.directions, seen, 0.1 * kPi / 180);
+  int front = 0;
+  for (int d = 0; d < vis.directions.size(); ++d) front += coneHas(seen, d) && vis.directions.directions[d].z() > -0.01;
+  EXPECT_EQ(coneSize(surface), front);
+  EXPECT_GE(front, 1);
+}
+
+TEST(ContourStretches, FollowTheWallsToFinishInClimbDirection) {
+  // The tool centre may go anywhere in a 10 x 10 square; the wall to finish lies 1 mm left of its left side.
+  const Region square = regionFromPolygons({{Point2(0, 0), Point2(10, 0), Point2(10, 10), Point2(0, 10)}});
+  std::vector<Point2> wall;
+  for (double y = 3; y <= 7; y += 0.25) wall.emplace_back(-1, y);
+  const auto stretches = contourStretches(square, wall, 1.1, 2.0, 0.5);
+  ASSERT_EQ(stretches.size(), 1u);
+  const ContourStretch& s = stretches[0];
+  EXPECT_FALSE(s.closed);
+  double lo = 1e9, hi = -1e9;
+  for (const Point2& p : s.points) {
+    EXPECT_NEAR(p.x(), 0, 1e-3);
+    lo = std::min(lo, p.y()), hi = std::max(hi, p.y());
+  }
+  // The points within reach (y 2.6 .. 7.4 at most) and half a mm of lead beyond them.
+  EXPECT_LT(lo, 3 - 0.4);
+  EXPECT_GT(hi, 7 + 0.4);
+  EXPECT_GT(lo, 1.5);
+  EXPECT_LT(hi, 8.5);
+  // Climb milling with the spindle turning clockwise: the material (the wall) on the left of the feed, so up +y here.
+  EXPECT_GT(s.points.back().y(), s.points.front().y());
+  // All round: the whole ring, closed.
+  std::vector<Point2> around;
+  for (double t = 0; t <= 10; t += 0.25) {
+    around.emplace_back(-1, t), around.emplace_back(11, t), around.emplace_back(t, -1), around.emplace_back(t, 11);
+  }
+  const auto ring = contourStretches(square, around, 1.1, 2.0, 0.5);
+  ASSERT_EQ(ring.size(), 1u);
+  EXPECT_TRUE(ring[0].closed);
+}
+
+TEST(PlanarFinishing, FinishesAPocketedBlockFromAboveToItsNominalFaces) {
+  const Part part = pocketedBlock();
+  LoadOptions fine;
+  fine.chordal_tolerance = 0.002;
+  fine.angular_tolerance = 0.05;
+  const ToolLibrary library = loadToolLibrary(kTools);
+  std::vector<const Tool*> flats;
+  for (const Tool& t : library.tools)
+    if (t.type == ToolType::Flat) flats.push_back(&t);
+  std::stable_sort(flats.begin(), flats.end(), [](const Tool* a, const Tool* b) {
+    return a->diameter != b->diameter ? a->diameter > b->diameter : a->flute_length < b->flute_length;
+  });
+  PlanarGroup group;
+  group.frame = setupFrame(part, Vec3::UnitZ());
+  group.stock = test::box(Vec3(-2, -2, -2), Vec3(62, 42, 22));
+  std::vector<int> targets;
+  for (int f = 0; f < static_cast<int>(part.faces.size()); ++f) {
+    const Face& face = part.faces[f];
+    if (face.type == SurfaceType::Plane && face.normal.z() > 1 - 1e-9) {
+      group.targets.push_back({f, FinishingKind::FaceMill});
+    } else if (face.type == SurfaceType::Plane && std::abs(face.normal.z()) < 1e-9 && face.area < 30 * 8 + 1) {
+      group.targets.push_back({f, FinishingKind::SideMill});  // the pocket's walls, not the block's sides
+    } else if (face.type == SurfaceType::Cylinder) {
+      group.targets.push_back({f, FinishingKind::Contour});
+    } else {
+      continue;
+    }
+    targets.push_back(f);
+  }
+  ASSERT_EQ(group.targets.size(), 10u) << "top, floor, 4 walls, 4 corners";
+  FinishingOptions options;
+  const PlanarResult result = finishPlanar(part, group, flats, options);
+  ASSERT_FALSE(result.operations.empty());
+  for (const PlanarReach& r : result.reach) EXPECT_GE(r.reached, 0.99 * r.size) << "face " << r.face;
+  // The corners (4 mm) need a tool of at most 4 mm radius: a rest tool finishes them after the main one.
+  const ToolLibrary& lib = library;
+  EXPECT_GT(lib.find(result.operations.front().tool)->diameter, 8);
+  bool rest = false;
+  for (const FinishingOperation& op : result.operations)
+    rest = rest || (op.kind == FinishingKind::Rest && lib.find(op.tool)->diameter <= 8);
+  EXPECT_TRUE(rest);
+
+  // The judge: the finishing passes swept through the stock roughing leaves (the part with 0.3 mm on every face
+  // finished from above) find no gouge and no collision, and leave those faces within 0.01 mm (+ the lattice's
+  // rounding) of nominal.
+  const double skin = 0.3;
+  const Part stock = test::stepPart(test::pocketedBlock(Vec3(-2, -2, 0), Vec3(62, 42, 20 + skin), 30 - 2 * skin,
+                                                        20 - 2 * skin, 8, 4 - skin),
+                                    "pocket_stock", fine);
+  Toolpath path;
+  std::vector<Tool> tools;
+  for (const FinishingOperation& op : result.operations) {
+    path.insert(path.end(), op.path.begin(), op.path.end());
+    if (std::none_of(tools.begin(), tools.end(), [&](const Tool& t) { return t.id == op.tool; }))
+      tools.push_back(*library.find(op.tool));
+  }
+  VerifyOptions verify;
+  verify.resolution = 0.1;
+  verify.stock_mesh = &stock.mesh;
+  verify.max_listed = 1000;
+  const VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, path, tools, verify);
+  EXPECT_EQ(report.gouges, 0) << report.worst_gouge_mm;
+  EXPECT_EQ(report.collisions, 0) << report.worst_collision_mm;
+  // What is left over the faces finished: every piece of leftover inside the part's outline (the stock beyond its
+  // sides is no target here) is thinner than the tolerance.
+  for (const LeftoverRegion& r : report.regions)
+    if (r.box.min.x() > -1e-6 && r.box.max.x() < 60 + 1e-6 && r.box.min.y() > -1e-6 && r.box.max.y() < 40 + 1e-6)
+      EXPECT_LE(r.max_thickness_mm, 0.01) << "leftover at " << r.thickest_point.transpose();
+}
