@@ -2,7 +2,7 @@
 // (issue 17, "Figures to reach").
 //
 // The surface is sampled: every triangle is split by longest-edge bisection until each piece has an area of at most
-// sample_spacing^2 and no edge longer than 2 * sample_spacing (slivers are cut along their length, so a long thin
+// sample_spacing^2 and no edge longer than 4 * sample_spacing (slivers are cut along their length, so a long thin
 // triangle still gets samples all along it); a sample sits at each piece's centroid and stands for that piece's area.
 // Deterministic: the same mesh gives the same samples. A sample is covered when some pose of a feed move puts the
 // flutes of the tool within `tolerance` of it: the exact distance from the point to the tool's cutting solid (the
@@ -37,7 +37,9 @@ namespace art2part {
 
 struct CoverageOptions {
   double tolerance = 0.05;      // mm: covered when a cutting pose comes this close
-  double sample_spacing = 0;    // mm (pieces of at most spacing^2); 0 = automatic (area / 400k, kept within 0.2..2 mm)
+  // mm (pieces of at most spacing^2); 0 = automatic: sqrt(area / 400k) kept within 0.2..2 mm, so at least 400k
+  // samples below the caps; small triangles and slivers add more (CTC-02's 122k-triangle mesh: 2.5 M at 2 mm).
+  double sample_spacing = 0;
   double pose_step = 0.1;       // mm between poses along a feed move
   int threads = 0;              // 0 = the hardware's
 };
