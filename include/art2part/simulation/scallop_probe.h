@@ -17,9 +17,13 @@
 //    plus the axis' turn times the flutes' height);
 //  - the material left is the tool's lowest point minus the surface, when the tool came within the depth of the
 //    surface at all ("reached"); a tool below the surface is a gouge (deepest_cut_mm).
-// The window's scallop is the largest material left over its reached rays. Moves are found through their swept boxes
-// (blocks of 64 consecutive moves first) and only the stretch of a move whose tip comes within the tool's reach of
-// the window is posed. Windows are spread over the faces' area at random from `seed` and measured in parallel, each by
+// The window's scallop is the largest material left over its reached rays; the ray that reads it is nearest a ridge's
+// apex line, so lattices 4 and 16 times finer around it (9 x 9 rays, a pitch and then a quarter pitch to each side)
+// find the apex (the window's max only; rays, reached and the mean stay the lattice's).
+// Speed: moves are found through their swept boxes (blocks of 64 consecutive moves first), nearest the window first;
+// only the stretch of a move whose tip comes within the flutes' reach of the window is posed; a piece whose lowest
+// point over the window (a sphere's exactly, a frustum's box) lies above every ray's lowest so far is skipped (rays
+// start at the depth above the surface), so once the nearest passes are in, the farther poses cost one bound each. Windows are spread over the faces' area at random from `seed` and measured in parallel, each by
 // one thread, so the result does not depend on the thread count.
 // Error: a ray a distance e beside a ridge's apex reads it (s / 2R) e lower (R the ball's radius, s the stepover); the
 // turned lattice brings e well under pitch / 2 (a tenth of the cusp at pitch s / 20 in the worst case); poses a pitch

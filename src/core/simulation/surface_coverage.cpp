@@ -18,6 +18,7 @@ constexpr double kAutomaticSamples = 4e5;  // the header's "about 400k samples"
 constexpr double kFinestSpacing = 0.2, kCoarsestSpacing = 2.0;  // mm: the automatic spacing's bounds
 constexpr double kMaxCells = 4e6;          // grid cells at most (4 bytes of start and count each)
 constexpr double kCellsPerSpacing = 2.0;   // a cell holds a few samples: 2 spacings wide
+constexpr double kChunkTravelMin = 1.0;    // mm: a chunk holds a flute radius of travel, at least this much
 constexpr int kSlabCells = 2;              // cells per slab of x handed out to the threads in turn
 // Pieces at most 4 spacings long: a sliver's samples no farther apart along it (2 would give 6.2 M samples on CTC-02's
 // fine mesh instead of 2.5 M, no edge bound 1.0 M with samples up to a sliver's length apart).
@@ -138,7 +139,7 @@ std::vector<Chunk> chunksOf(const std::vector<FeedMove>& moves, const std::vecto
     const Flutes& f = flutes[move.tool];
     if (f.pieces.empty()) continue;
     if (!current.stretches.empty() && current.tool != move.tool) close();
-    const double length = std::max(f.radius, 1.0);
+    const double length = std::max(f.radius, kChunkTravelMin);
     const int steps = poseSteps(move, f, step);
     poses += steps + 1;
     const double per_step = std::max((move.to.tip - move.from.tip).norm() + move.angle * f.h_max, 1e-12) / steps;
