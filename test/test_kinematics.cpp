@@ -534,6 +534,35 @@ TEST_P(EachFiveAxisMachine, SingularAxisHoldsC) {
   EXPECT_TRUE(path[30].rotary_held);
 }
 
+TEST_P(EachFiveAxisMachine, SingularPosesTakeCFromTheNextRegularPose) {
+  const Machine machine = machineNamed(GetParam());
+  const Placement placement;
+  const double z = machine.kind == MachineKind::HeadBC ? -100 : 0;
+  const JointPosition previous = jointsAt(0, 0, 0, 20, 37);
+  // Three vertical poses, then the axis tilting at C = 110 deg: the vertical ones take C 110 (not the 37 before), so
+  // the tilt follows without turning C; two vertical poses at the end hold the last C.
+  std::vector<ToolPose> poses;
+  for (int i = 0; i < 3; ++i) poses.push_back(forwardKinematics(machine, placement, jointsAt(i, 0, z, 0, 0)));
+  for (int i = 1; i <= 10; ++i) poses.push_back(forwardKinematics(machine, placement, jointsAt(3, 0, z, 2 * i, 110)));
+  for (int i = 0; i < 2; ++i) poses.push_back(forwardKinematics(machine, placement, jointsAt(4, i, z, 0, 0)));
+  EXPECT_TRUE(singularPose(machine, placement, poses[0]));
+  EXPECT_FALSE(singularPose(machine, placement, poses[3]));
+  const std::vector<IkSolution> path = inverseKinematicsPath(machine, placement, poses, previous);
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    ASSERT_TRUE(path[i].ok()) << path[i].reason;
+    EXPECT_NEAR(path[i].joints.rotary, 110 * kDeg, 1e-12) << i;
+    EXPECT_LT((forwardKinematics(machine, placement, path[i].joints).tip - poses[i].tip).norm(), 1e-9) << i;
+  }
+  EXPECT_TRUE(path[0].rotary_held && path[2].rotary_held && path[14].rotary_held);
+  EXPECT_NEAR(path[3].joints.tilt, 2 * kDeg, 1e-12);
+  // From C = 290 the nearer branch of the tilted poses is (-tilt, C + 180): the vertical poses take 290.
+  const std::vector<IkSolution> other = inverseKinematicsPath(machine, placement, poses, jointsAt(0, 0, 0, 0, 290));
+  EXPECT_NEAR(other[0].joints.rotary, 290 * kDeg, 1e-12);
+  EXPECT_NEAR(other[3].joints.rotary, 290 * kDeg, 1e-12);
+  EXPECT_NEAR(other[3].joints.tilt, -2 * kDeg, 1e-12);
+  EXPECT_FALSE(singularPose(machineNamed("mill_3axis"), placement, poses[0]));
+}
+
 TEST(MachineHelpers, RpyAndJointVectorsRoundTrip) {
   const Vec3 rpy(0.3, -0.7, 2.9);
   EXPECT_LT((rpyFromRotation(rotationFromRpy(rpy)) - rpy).norm(), 1e-12);

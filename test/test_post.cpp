@@ -409,6 +409,114 @@ TEST(Post, SingularPassHoldsC) {
   EXPECT_TRUE(seen);
 }
 
+// ---- through the singularity (issue 17): ball finishing over a dome of radius 30, the tool axis along the normal ----
+// The dome's centre lies 36 mm off the C axis, so turning C moves the part under the tool: C must not jump.
+
+const Vec3 kDomeCentre(30, 20, -15);
+
+Vec3 domeNormal(double x, double y) { return Vec3(x, y, std::sqrt(30 * 30 - x * x - y * y)) / 30; }
+Vec3 domePoint(double x, double y) { return kDomeCentre + 30 * domeNormal(x, y); }
+
+// A feed along the dome through the given (x, y) in straight steps of about `step`, the axis along the normal,
+// entered and left by rapids 10 mm up the axis.
+void addDomePass(Toolpath& path, int op, const std::vector<Eigen::Vector2d>& corners, double step = 1.5) {
+  std::vector<Eigen::Vector2d> xys;
+  for (size_t c = 0; c + 1 < corners.size(); ++c) {
+    const int n = std::max(1, static_cast<int>(std::round((corners[c + 1] - corners[c]).norm() / step)));
+    for (int k = c == 0 ? 0 : 1; k <= n; ++k)
+      xys.push_back(corners[c] + (corners[c + 1] - corners[c]) * (static_cast<double>(k) / n));
+  }
+  auto at = [&](const Eigen::Vector2d& xy, MoveKind move, double up) {
+    const Vec3 normal = domeNormal(xy.x(), xy.y());
+    return point(op, 0, "ball6", move, domePoint(xy.x(), xy.y()) + up * normal, normal);
+  };
+  path.push_back(at(xys.front(), MoveKind::Rapid, 10));
+  for (const Eigen::Vector2d& xy : xys) path.push_back(at(xy, MoveKind::Feed, 0));
+  path.push_back(at(xys.back(), MoveKind::Rapid, 10));
+}
+
+// Every feed of the path is one continuous run of feed moves in the program: no retract, no reposition in between.
+void expectNoLift(const MachineProgram& program, const Toolpath& path) {
+  int last_op = -1;
+  bool cutting = false;
+  for (const ProgramStep& step : program.setups[0].steps) {
+    const bool feed = step.kind == StepKind::Move && step.row > 0 && path[step.row].move == MoveKind::Feed &&
+                      path[step.row - 1].move == MoveKind::Feed;
+    if (feed) {
+      EXPECT_TRUE(cutting || path[step.row - 1].op != last_op) << "row " << step.row << ": the pass was interrupted";
+      EXPECT_EQ(step.move, MoveKind::Feed) << "row " << step.row;
+      cutting = true;
+      last_op = path[step.row].op;
+    } else if (step.kind != StepKind::Move || step.row < 0 || path[step.row].move == MoveKind::Rapid) {
+      cutting = false;
+    }
+  }
+}
+
+TEST(Post, DomeRasterPassesStraightThroughTheSingularity) {
+  // Five lines along x over the dome; the middle one (y = 0) passes the apex: the axis tilts -x, is vertical at x = 0
+  // (A = 0: C free), then tilts +x. C carries on without a flip and the lines post without a lift.
+  Toolpath path;
+  int op = 0;
+  for (double y : {-6.0, -3.0, 0.0, 3.0, 6.0}) addDomePass(path, op++, {{-15, y}, {15, y}});
+  const Machine machine = machineNamed("trunnion_ac");
+  const MachineProgram program = buildMachineProgram(machine, path, shopTools(), "dome", {});
+  ASSERT_EQ(program.mode, PostMode::FiveAxis);
+  const Rs274Run run = expectAccepted(jobProgramText(program), program, "dome");
+  checkAgainstToolpath(program, path, run, {0});
+  expectNoLift(program, path);
+  // Along the middle line C never moves (the axis stays in the plane y = 0) and A passes through 0.
+  double c = NAN, a_min = 1e9, a_max = -1e9;
+  for (const ProgramStep& step : program.setups[0].steps) {
+    if (step.kind != StepKind::Move || step.row < 0 || path[step.row].op != 2 || path[step.row].move != MoveKind::Feed)
+      continue;
+    if (std::isnan(c)) c = step.joints.rotary;
+    EXPECT_NEAR(step.joints.rotary, c, 1e-9) << "row " << step.row;
+    a_min = std::min(a_min, step.joints.tilt);
+    a_max = std::max(a_max, step.joints.tilt);
+  }
+  EXPECT_NEAR(std::abs(std::remainder(c, kPi)), 0.5 * kPi, 1e-9) << "C at +-90 deg: the axis tilts along x";
+  EXPECT_LT(a_min, -25 * kDeg);
+  EXPECT_GT(a_max, 25 * kDeg);
+}
+
+TEST(Post, PassStartingVerticalTakesCFromWhereItTilts) {
+  // From the apex (vertical) down the +x side, and one from the apex along +y then -x: the first pose's C is the one
+  // the first tilted pose needs, so the feeds post without a lift.
+  Toolpath path;
+  addDomePass(path, 0, {{0, 0}, {15, 0}});
+  addDomePass(path, 1, {{0, 0}, {0, 12}});
+  addDomePass(path, 2, {{0, 0}, {0, 0.5}, {-12, 0.5}}, 0.5);
+  const Machine machine = machineNamed("trunnion_ac");
+  const MachineProgram program = buildMachineProgram(machine, path, shopTools(), "dome", {});
+  const Rs274Run run = expectAccepted(jobProgramText(program), program, "dome_vertical_start");
+  checkAgainstToolpath(program, path, run, {0});
+  expectNoLift(program, path);
+}
+
+TEST(Post, PassTurningAtTheApexTurnsCInPlace) {
+  // Along x up to the apex, then along y away from it: the axis leaves the plane y = 0 for the plane x = 0. At the
+  // vertical pose C turns a quarter turn in place (the tip held on the apex, the joints subdivided so it stays within
+  // the chordal tolerance) instead of a lift.
+  Toolpath path;
+  addDomePass(path, 0, {{-12, 0}, {0, 0}, {0, 12}});
+  const Machine machine = machineNamed("trunnion_ac");
+  const MachineProgram program = buildMachineProgram(machine, path, shopTools(), "dome", {});
+  const Rs274Run run = expectAccepted(jobProgramText(program), program, "dome_turn");
+  checkAgainstToolpath(program, path, run, {0});
+  expectNoLift(program, path);
+  // The turn: feed steps at the apex whose C changes while A stays 0, together a quarter turn.
+  double turned = 0;
+  JointPosition at = program.start;
+  for (const ProgramStep& step : program.setups[0].steps) {
+    if (step.kind == StepKind::Move && step.move == MoveKind::Feed && std::abs(step.joints.tilt) < 1e-9 &&
+        std::abs(at.tilt) < 1e-9)
+      turned += std::abs(step.joints.rotary - at.rotary);
+    if (step.kind != StepKind::ToolChange) at = step.joints;
+  }
+  EXPECT_NEAR(turned, 0.5 * kPi, 1e-6);
+}
+
 TEST(Post, TableTiltBCPathPassesRs274) {
   const Machine machine = machineNamed("trunnion_bc");
   const Toolpath path = fiveAxisPath();

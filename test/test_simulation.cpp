@@ -146,6 +146,45 @@ TEST(Simulation, DipIntoThePartIsAGougeOfItsDepth) {
   }
 }
 
+TEST(Simulation, EachFaceReportsItsOwnGougeAndWhatIsLeftOnIt) {
+  // The block's six faces (test::box: two triangles per face, in the order -z, +z, -y, +y, -x, +x). A flat pass 0.1 mm
+  // into the middle of the top (+z, face 1) and, after it, a pass down the +x side (face 5) 0.08 mm into it: each
+  // face reports its own gouge, no other face any. The rest of the stock stays: 2 mm on the faces it covers.
+  std::vector<int> faces;
+  for (int t = 0; t < kBlock.triangleCount(); ++t) faces.push_back(t / 2);
+  Toolpath path = pass("flat6", Vec3(8, 10, 9.9), Vec3(32, 10, 9.9));
+  const Toolpath side = pass("flat6", Vec3(42.92, 5, 3), Vec3(42.92, 15, 3));
+  path.insert(path.end(), side.begin(), side.end());
+  VerifyOptions o = options(0.2, 2);
+  const VerificationReport r = verifyToolpath(kBlock, faces, path, {kFlat}, o);
+  ASSERT_EQ(r.face_checks.size(), 6u);
+  for (const FaceVerification& f : r.face_checks) {
+    EXPECT_GT(f.samples, 0) << "face " << f.face;
+    if (f.face == 1 || f.face == 5) {
+      EXPECT_GT(f.gouges, 0) << "face " << f.face;
+      EXPECT_NEAR(f.deepest_gouge_mm, f.face == 1 ? 0.1 : 0.08, 0.01) << "face " << f.face;
+    } else {
+      EXPECT_EQ(f.gouges, 0) << "face " << f.face;
+      EXPECT_EQ(f.deepest_gouge_mm, 0.0) << "face " << f.face;
+    }
+    if (f.face == 0) {
+      EXPECT_NEAR(f.left_max_mm, 2.0, 0.25) << "the bottom keeps its margin";
+    }
+  }
+  EXPECT_NEAR(r.face_checks[1].deepest_gouge_point.z(), 9.9, 0.02);
+  EXPECT_NEAR(r.face_checks[5].deepest_gouge_point.x(), 39.92, 0.02);
+  int listed = 0;
+  for (const FaceVerification& f : r.face_checks) listed += f.gouges;
+  EXPECT_EQ(listed, r.gouges) << "every gouge lies under one face";
+  // The JSON lists every face.
+  const nlohmann::json j = nlohmann::json::parse(reportJson(r));
+  ASSERT_EQ(j["face_checks"].size(), 6u);
+  EXPECT_EQ(j["face_checks"][5]["face"], 5);
+  EXPECT_NEAR(j["face_checks"][5]["deepest_gouge_mm"].get<double>(), 0.08, 0.01);
+  // Without faces, no list.
+  EXPECT_TRUE(verifyToolpath(kBlock, {}, path, {kFlat}, o).face_checks.empty());
+}
+
 TEST(Simulation, GougesGoToTheMovesThatMadeThemAlongAStraightRun) {
   // Points every 0.5 mm on one line 0.03 mm into the top (swept as one segment). A move gouges when it removes part
   // material: from when the front of the flat bottom passes 0.01 mm over the edge (the move to x = -2.5) until the

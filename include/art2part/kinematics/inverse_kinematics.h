@@ -12,7 +12,7 @@
 // Each 5-axis pose away from the singularity has two solution branches, (tilt, C) and (-tilt, C + 180 deg), and every
 // rotary angle repeats each 360 deg; the inverse picks among them the one nearest the previous joints (shortest
 // rotary move) that stays inside the limits. The singularity is the tool axis along the C axis (tilt 0): C is then
-// free, and the inverse holds it at its previous value.
+// free; inverseKinematics holds it at its previous value, inverseKinematicsPath takes it from the next regular pose.
 #pragma once
 
 #include <string>
@@ -77,9 +77,18 @@ std::vector<JointPosition> inverseKinematicsBranches(const Machine& machine, con
                                                      const ToolPose& pose, const JointPosition& previous,
                                                      const IkOptions& options = {});
 
+// Whether the pose is singular on this machine: a 5-axis machine with the tool axis within options.axis_tolerance of
+// the C axis (C is then free). False on a 3-axis machine and for an invalid pose.
+bool singularPose(const Machine& machine, const Placement& placement, const ToolPose& pose, const IkOptions& options = {});
+
 // A whole sequence of poses, each solved from the solution before (the first from `start`), so that rotary motion is
-// continuous: C never jumps by more than the move between two poses needs. A pose that fails leaves the chain at the
-// last good solution. One solution per pose.
+// continuous: C never jumps by more than the move between two poses needs. A singular pose does not hold C blindly:
+// it takes the C of the next regular (non-singular) pose of the sequence, that pose's branch nearest the joints before
+// the singularity (issue 17: a finishing pass over a dome's apex tilts -x, is vertical, tilts +x: C stays; a pass that
+// starts vertical takes the C it tilts at; a run of singular poses shares one C). Singular poses at the end of the
+// sequence hold C. When the branch before the singularity and the one after differ in C (the axis leaves the
+// singularity in another plane than it came), C turns at the singular pose: the post turns it there in place
+// (five_axis_motion.cpp). A pose that fails leaves the chain at the last good solution. One solution per pose.
 std::vector<IkSolution> inverseKinematicsPath(const Machine& machine, const Placement& placement,
                                               const std::vector<ToolPose>& poses, const JointPosition& start,
                                               const IkOptions& options = {});

@@ -8,9 +8,11 @@
 //           axis must lie along the spindle once the part is fixtured (its fixture in the machine file or in
 //           PostOptions::fixtures), otherwise the post refuses it.
 //   5-axis  the joints follow every point: inverse kinematics per point, each solved from the one before
-//           (inverseKinematicsPath: C unwound, never jumping a turn; singular poses hold C), and every move subdivided
-//           until the tip of the linearly interpolated joints stays within chordal_tolerance of the straight CL
-//           segment and the tool axis within axis_tolerance_deg of the interpolated (slerp) CL axis.
+//           (inverseKinematicsPath: C unwound, never jumping a turn; a singular pose takes the C of the next regular
+//           one), and every move subdivided until the tip of the linearly interpolated joints stays within
+//           chordal_tolerance of the straight CL segment and the tool axis within axis_tolerance_deg of the
+//           interpolated (slerp) CL axis. Where the axis reaches the singularity in one plane and leaves it in
+//           another, C turns in place at the singular pose (tip and axis held, subdivided likewise): no lift.
 //
 // Coordinates: every move is in joint coordinates. LinuxCNC runs the programs under identity kinematics (M429 on the
 // simulated xyzac-trt / xyzbc-trt machines, their start-up mode) with G43 active, so the program's X Y Z are the joints'

@@ -50,6 +50,18 @@ struct CollisionRecord {
   Vec3 tip = Vec3::Zero();
 };
 
+// One face of the part after the whole path (issue 17 item 9: roughing and finishing simulated in order): the material
+// left on it and the deepest gouge under it.
+struct FaceVerification {
+  int face = -1;
+  double left_max_mm = 0;   // the largest material left above the face: leftover.h's FaceCusp (thickness met just
+  double left_mean_mm = 0;  // outside the face along rays within 60 deg of its normal), max and mean
+  int samples = 0;          // those rays (0: no ray crossed the face steeply enough to measure it)
+  int gouges = 0;           // moves whose deepest gouge (deeper than the tolerance) lies under this face
+  double deepest_gouge_mm = 0;                 // the deepest of them (0 when none)
+  Vec3 deepest_gouge_point = Vec3::Zero();     // where (inside the part)
+};
+
 struct VerificationReport {
   int gouges = 0;  // moves removing part material deeper than the tolerance
   double worst_gouge_mm = 0;
@@ -63,6 +75,10 @@ struct VerificationReport {
   int region_count = 0;
   std::vector<FaceCusp> faces;  // highest cusp first, at most max_listed
   int face_count = 0;
+  // Every face id of triangle_face (0 .. the largest), by id, never cut to max_listed; empty without triangle_face.
+  // A gouge goes to the face of the part triangle nearest its deepest point (PartDistance); a gouge nearest a
+  // triangle of no face (-1, or one solid_closure.h added) is in the totals only.
+  std::vector<FaceVerification> face_checks;
   // Figures.
   double resolution_mm = 0, tolerance_mm = 0;
   Vec3 spacing = Vec3::Zero();
@@ -93,7 +109,8 @@ VerificationReport verifyToolpath(const Mesh& part, const std::vector<int>& tria
 double automaticResolution(const Box& box);
 
 // The report as JSON text (indented): gouges, worst_gouge_mm, collisions, leftover_volume_mm3, leftover_max_mm,
-// passed, the lists and the figures.
+// passed, the lists, face_checks (every face: face, left_max_mm, left_mean_mm, samples, gouges, deepest_gouge_mm,
+// deepest_gouge_point) and the figures.
 std::string reportJson(const VerificationReport& report);
 
 }  // namespace art2part

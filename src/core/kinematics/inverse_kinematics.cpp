@@ -40,10 +40,14 @@ struct RotarySolutions {
   double axis_error = 0;
 };
 
+bool alongRotaryAxis(const Vec3& axis_in_table, const IkOptions& options) {
+  return std::hypot(axis_in_table.x(), axis_in_table.y()) <= std::sin(options.axis_tolerance);
+}
+
 RotarySolutions rotarySolutions(const Machine& machine, const Vec3& axis, const JointPosition& previous,
                                 const IkOptions& options) {
   RotarySolutions solutions;
-  if (std::hypot(axis.x(), axis.y()) <= std::sin(options.axis_tolerance)) {
+  if (alongRotaryAxis(axis, options)) {
     // Axis along the C axis (either way): any C does; keep the one we have, inside its travel.
     const double rotary = unwound(machine.rotaryJoint(), previous.rotary, previous.rotary, options.limit_tolerance);
     const double tilt = tiltWithRotaryHeld(machine.kind, axis, rotary);
@@ -182,14 +186,38 @@ std::vector<JointPosition> inverseKinematicsBranches(const Machine& machine, con
   return candidates(machine, placement.tool_length, in_table, previous, options, false, rotaries);
 }
 
+bool singularPose(const Machine& machine, const Placement& placement, const ToolPose& pose, const IkOptions& options) {
+  ToolPose in_table;
+  return machine.fiveAxis() && poseInTable(placement, pose, in_table) && alongRotaryAxis(in_table.axis, options);
+}
+
 std::vector<IkSolution> inverseKinematicsPath(const Machine& machine, const Placement& placement,
                                               const std::vector<ToolPose>& poses, const JointPosition& start,
                                               const IkOptions& options) {
+  const int count = static_cast<int>(poses.size());
+  // The first pose at or after each that is not singular (count when none).
+  std::vector<int> next_regular(count + 1, count);
+  for (int i = count - 1; i >= 0; --i)
+    next_regular[i] = singularPose(machine, placement, poses[i], options) ? next_regular[i + 1] : i;
   std::vector<IkSolution> solutions;
   solutions.reserve(poses.size());
   JointPosition previous = start;
-  for (const ToolPose& pose : poses) {
-    solutions.push_back(inverseKinematics(machine, placement, pose, previous, options));
+  int looked_at = -1;         // the regular pose a run of singular poses took its C from
+  double looked_rotary = 0;   // and that C
+  for (int i = 0; i < count; ++i) {
+    JointPosition from = previous;
+    const int regular = next_regular[i];
+    if (regular != i && regular < count) {
+      // Singular: C is free. Take the C the next regular pose needs from here (its branch nearest the joints before
+      // the singularity), so that pose follows without a flip; a whole run of singular poses shares it.
+      if (looked_at != regular) {
+        const IkSolution ahead = inverseKinematics(machine, placement, poses[regular], previous, options);
+        looked_at = regular;
+        looked_rotary = ahead.ok() ? ahead.joints.rotary : previous.rotary;
+      }
+      from.rotary = looked_rotary;
+    }
+    solutions.push_back(inverseKinematics(machine, placement, poses[i], from, options));
     if (solutions.back().ok()) previous = solutions.back().joints;
   }
   return solutions;

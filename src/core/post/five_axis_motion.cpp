@@ -1,7 +1,10 @@
 // Continuous 5-axis setups: inverse kinematics per point (inverseKinematicsPath: each point from the one before, so C
-// unwinds without jumping a turn and singular poses hold C), then each CL segment subdivided by bisection until the
-// linearly interpolated joints keep the tip within the chordal tolerance of the straight segment and the tool axis
-// within the axis tolerance of the interpolated (slerp) axis, checked at 7 points of every piece.
+// unwinds without jumping a turn, and singular poses take the C of the next regular pose), then each CL segment
+// subdivided by bisection until the linearly interpolated joints keep the tip within the chordal tolerance of the
+// straight segment and the tool axis within the axis tolerance of the interpolated (slerp) axis, checked at 7 points
+// of every piece. A segment into (or out of) a singular pose whose C differs on its two sides is followed with C held,
+// then C turns in place at the singular pose: a pass that reaches the vertical in one plane and leaves it in another
+// posts without a lift.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -86,6 +89,44 @@ bool refine(const ClSegment& segment, const JointPosition& ja, double sa, const 
          refine(segment, middle.joints, sm, jb, sb, depth + 1, out);
 }
 
+// The joints that hold the pose of a singular point with C at `rotary` (the pose's tilt; C free there).
+JointPosition heldAt(const ClSegment& segment, const ToolPose& pose, const JointPosition& near, double rotary) {
+  JointPosition previous = near;
+  previous.rotary = rotary;
+  return inverseKinematics(segment.machine, segment.placement, pose, previous, segment.options.ik).joints;
+}
+
+// A turn of C in place at a singular pose (tip and axis held, only C and the linear joints moving): bisected until the
+// linearly interpolated joints keep the tip within the chordal tolerance of the point. Appends the joints after ja up
+// to jb (inclusive) at `s`.
+bool turnInPlace(const ClSegment& turn, const JointPosition& ja, const JointPosition& jb, double s, int depth,
+                 std::vector<SubPoint>& out) {
+  if (turn.followedBy(ja, s, jb, s)) {
+    out.push_back({jb, s});
+    return true;
+  }
+  if (depth >= kMaxDepth) return false;
+  const JointPosition middle = heldAt(turn, turn.from, ja, 0.5 * (ja.rotary + jb.rotary));
+  return turnInPlace(turn, ja, middle, s, depth + 1, out) && turnInPlace(turn, middle, jb, s, depth + 1, out);
+}
+
+// The joints along a CL segment whose end (or start) is singular and whose C differs across it: the tilt follows the
+// segment with C held, and C turns in place at the singular end (or first, at the singular start).
+bool followWithTurn(const ClSegment& segment, const IkSolution& from, const IkSolution& to,
+                    std::vector<SubPoint>& out) {
+  if (to.rotary_held) {
+    const JointPosition held = heldAt(segment, segment.to, to.joints, from.joints.rotary);
+    const ClSegment turn{segment.machine, segment.placement, segment.to, segment.to, segment.options};
+    return refine(segment, from.joints, 0.0, held, 1.0, 0, out) && turnInPlace(turn, held, to.joints, 1.0, 0, out);
+  }
+  if (from.rotary_held) {
+    const JointPosition turned = heldAt(segment, segment.from, from.joints, to.joints.rotary);
+    const ClSegment turn{segment.machine, segment.placement, segment.from, segment.from, segment.options};
+    return turnInPlace(turn, from.joints, turned, 0.0, 0, out) && refine(segment, turned, 0.0, to.joints, 1.0, 0, out);
+  }
+  return false;
+}
+
 std::string describeJump(const Machine& machine, const JointPosition& a, const JointPosition& b) {
   char text[200];
   std::snprintf(text, sizeof text, "%s %.3f -> %.3f deg, %s %.3f -> %.3f deg", machine.tiltJoint().name.c_str(),
@@ -108,12 +149,15 @@ std::vector<IkSolution> solveRun(const ProgramBuilder& builder, PointRun run, co
 }
 
 // The moves from point row - 1 to point row; false when the joints cannot follow the segment.
-bool segmentMoves(ProgramBuilder& builder, const Placement& placement, int row, const JointPosition& from,
-                  const JointPosition& to) {
+bool segmentMoves(ProgramBuilder& builder, const Placement& placement, int row, const IkSolution& from,
+                  const IkSolution& to) {
   const Toolpath& path = builder.path();
   const ClSegment segment{builder.machine(), placement, poseOf(path[row - 1]), poseOf(path[row]), builder.options()};
   std::vector<SubPoint> points;
-  if (!refine(segment, from, 0.0, to, 1.0, 0, points)) return false;
+  if (!refine(segment, from.joints, 0.0, to.joints, 1.0, 0, points)) {
+    points.clear();
+    if (!followWithTurn(segment, from, to, points)) return false;
+  }
   const MoveKind move = path[row].move;
   const double feed = move == MoveKind::Feed ? builder.feedFor(row - 1, row) : 0.0;
   const double length = (path[row].tip - path[row - 1].tip).norm();
@@ -144,16 +188,16 @@ void planFiveAxis(ProgramBuilder& builder, PointRun setup_run) {
     builder.note("op " + std::to_string(path[run.begin].op));
     builder.approach(solutions[0].joints, path[run.begin].move, run.begin);
     for (int row = run.begin + 1; row < run.end; ++row) {
-      const JointPosition& from = solutions[row - 1 - run.begin].joints;
-      const JointPosition& to = solutions[row - run.begin].joints;
+      const IkSolution& from = solutions[row - 1 - run.begin];
+      const IkSolution& to = solutions[row - run.begin];
       if (path[row].op != path[row - 1].op) builder.note("op " + std::to_string(path[row].op));
       if (segmentMoves(builder, placement, row, from, to)) continue;
       if (path[row].move == MoveKind::Feed)
         throw InputError(describePoint(path, row) + ": the joints cannot follow this feed move continuously from "
-                         "the point before (" + describeJump(builder.machine(), from, to) +
+                         "the point before (" + describeJump(builder.machine(), from.joints, to.joints) +
                          "): the pose needs the other IK branch or leaves the travel mid-move; lift the tool there");
       builder.note("reposition: the rapid needs the other IK branch");
-      builder.approach(to, MoveKind::Rapid, row);
+      builder.approach(to.joints, MoveKind::Rapid, row);
     }
   }
 }

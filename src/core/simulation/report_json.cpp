@@ -40,6 +40,16 @@ json faceJson(const FaceCusp& f) {
   return {{"face", f.face}, {"max_mm", mm(f.max_mm)}, {"mean_mm", mm(f.mean_mm)}, {"samples", f.samples}};
 }
 
+json faceCheckJson(const FaceVerification& f) {
+  return {{"face", f.face},
+          {"left_max_mm", mm(f.left_max_mm)},
+          {"left_mean_mm", mm(f.left_mean_mm)},
+          {"samples", f.samples},
+          {"gouges", f.gouges},
+          {"deepest_gouge_mm", mm(f.deepest_gouge_mm)},
+          {"deepest_gouge_point", point(f.deepest_gouge_point)}};
+}
+
 template <class T, class F>
 json list(const std::vector<T>& items, F each) {
   json out = json::array();
@@ -65,6 +75,7 @@ std::string reportJson(const VerificationReport& r) {
   j["open_mesh_closed_edges"] = r.closed_open_mesh_edges;
   j["face_cusps"] = list(r.faces, faceJson);
   j["face_cusp_count"] = r.face_count;
+  j["face_checks"] = list(r.face_checks, faceCheckJson);
   j["tolerance_mm"] = r.tolerance_mm;
   j["resolution_mm"] = mm(r.resolution_mm);
   j["spacing_mm"] = point(r.spacing);

@@ -58,6 +58,36 @@ void listFindings(VerificationReport& r, const std::map<int, MoveFinding>& findi
   if (static_cast<int>(r.gouge_list.size()) > max_listed) r.gouge_list.resize(max_listed);
 }
 
+// Per face: the leftover's cusps, and each counted gouge at the face of the triangle nearest its deepest point.
+std::vector<FaceVerification> checkFaces(const LeftoverAnalysis& leftover, const std::map<int, MoveFinding>& findings,
+                                         const std::vector<int>& triangle_face, const PartDistance& distance,
+                                         double tolerance) {
+  int faces = 0;
+  for (int f : triangle_face) faces = std::max(faces, f + 1);
+  std::vector<FaceVerification> checks(faces);
+  for (int f = 0; f < faces; ++f) checks[f].face = f;
+  for (const FaceCusp& cusp : leftover.faces) {
+    if (cusp.face < 0 || cusp.face >= faces) continue;
+    checks[cusp.face].left_max_mm = cusp.max_mm;
+    checks[cusp.face].left_mean_mm = cusp.mean_mm;
+    checks[cusp.face].samples = cusp.samples;
+  }
+  for (const auto& [point, f] : findings) {
+    if (!(f.gouge_mm > tolerance)) continue;
+    int triangle = -1;
+    distance.distance(f.gouge_point, &triangle);
+    const int face = triangle >= 0 && triangle < static_cast<int>(triangle_face.size()) ? triangle_face[triangle] : -1;
+    if (face < 0 || face >= faces) continue;
+    FaceVerification& check = checks[face];
+    ++check.gouges;
+    if (f.gouge_mm > check.deepest_gouge_mm) {
+      check.deepest_gouge_mm = f.gouge_mm;
+      check.deepest_gouge_point = f.gouge_point;
+    }
+  }
+  return checks;
+}
+
 void listLeftover(VerificationReport& r, LeftoverAnalysis leftover, int max_listed) {
   r.leftover_volume_mm3 = leftover.volume_mm3;
   r.leftover_max_mm = leftover.max_thickness_mm;
@@ -124,7 +154,10 @@ VerificationReport verifyToolpath(const Mesh& part_mesh, const std::vector<int>&
 
   r.remaining_volume_mm3 = stock.volume();
   r.removed_volume_mm3 = r.stock_volume_mm3 - r.remaining_volume_mm3;
-  listLeftover(r, analyseLeftover(stock, part_dexels, part_box, triangle_face), options.max_listed);
+  LeftoverAnalysis leftover = analyseLeftover(stock, part_dexels, part_box, triangle_face);
+  if (!part_faces.empty())
+    r.face_checks = checkFaces(leftover, sweep.findings, triangle_face, distance, options.tolerance);
+  listLeftover(r, std::move(leftover), options.max_listed);
   if (state) {
     state->stock = std::move(stock);
     state->part = std::move(part_dexels);
