@@ -125,6 +125,11 @@ TEST(DrillSeries, HoldsTheMetricSeriesTapAndClearanceAndInchSizes) {
                          "hss_no50"})
     EXPECT_NE(library.find(id), nullptr) << id;
   EXPECT_EQ(countIds(library, "hss_", ToolType::Drill), 29 + 26 + 17);
+  // Past 14 mm, HSS in 0.25 mm steps to 20 mm (DIN 338's straight shanks): 14.25 .. 20, 24 sizes.
+  for (const char* id : {"hss14.25", "hss16", "hss19.75", "hss20"}) EXPECT_NE(library.find(id), nullptr) << id;
+  EXPECT_EQ(library.find("hss20.25"), nullptr);
+  EXPECT_DOUBLE_EQ(library.find("hss20")->flute_length, 140);
+  EXPECT_DOUBLE_EQ(library.find("hss20")->holder.front().diameter, 50);  // ER32 for 16 .. 20 mm shanks
   EXPECT_NEAR(library.find("hss_H")->diameter, 0.266 * 25.4, 1e-9);
   EXPECT_NEAR(library.find("hss_17_64in")->diameter, 17 * 25.4 / 64, 1e-9);
   // The stubs that were there keep their ids and data (plans and tests name them).
