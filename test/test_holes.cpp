@@ -12,6 +12,7 @@
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <STEPControl_Writer.hxx>
 #include <TopoDS_Shape.hxx>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -19,7 +20,9 @@
 #include <map>
 
 #include "art2part/finishing/holes.h"
+#include "art2part/geometry/adjacency.h"
 #include "art2part/geometry/part.h"
+#include "art2part/geometry/repair.h"
 #include "art2part/simulation/verify.h"
 #include "art2part/tooling/tool.h"
 
@@ -273,6 +276,197 @@ TEST(FindHoles, BossesGroovesAndPartialCylindersAreNotHoles) {
   SCOPED_TRACE(describe(holes[0]));
   EXPECT_NEAR(holes[0].mouth.y(), 30, 1e-6);
   EXPECT_NEAR(holes[0].arc_deg, 360 - 2 * std::acos(0.95) * 180 / kPi, 2);
+}
+
+// ---- plugs and paths, judged by the simulation ----------------------------------------------------------------------
+
+TEST(HolePlugs, AreClosedOutwardAndFillTheBore) {
+  const double r = 4.2, cone = pointLengthOf(r, 118);
+  const Part part = partOf(cut(cut(block(60, 40, 30), holeSolid(gp_Pnt(15, 20, 30), kDown, {{r, r, 20}, {r, 0, cone}})),
+                               holeSolid(gp_Pnt(40, 20, 30), kDown, {{5.5, 5.5, 6.5}, {3.3, 3.3, 25}})),
+                           "plugs");
+  const std::vector<Hole> holes = findHoles(part);
+  ASSERT_EQ(holes.size(), 2u);
+  std::vector<HoleMachining> methods;
+  for (const Hole& hole : holes) methods.push_back(chooseHoleMethod(hole, library()));
+  const Mesh plugs = holePlugs(holes, methods);
+  const MeshCheck check = checkMesh(plugs);
+  EXPECT_TRUE(check.closed);
+  EXPECT_EQ(buildAdjacency(plugs).nonmanifold_edges, 0);
+  // Inscribed polygons: within 0.01 mm of the true volume (the chords' slivers) and never above it.
+  const double blind = kPi * r * r * (20 + cone / 3), through = kPi * 3.3 * 3.3 * (30 - 6.5);
+  EXPECT_LE(signedVolume(plugs), blind + through);
+  EXPECT_NEAR(signedVolume(plugs), blind + through, 0.01 * 2 * kPi * (r * 20 + 3.3 * 23.5));
+  EXPECT_THROW(holePlugs(holes, {}), InputError);
+}
+
+// A spot drill, the matching drills and a helix on a part with a cone-bottomed, a through and a flat-bottomed hole,
+// swept through stock that is the holes' plugs: no gouge, no collision, and the plugs gone to the lattice's error.
+TEST(HolePaths, DrillingAndHelixPathsCutThePlugsWithoutGouges) {
+  const double r = 4.2, cone = pointLengthOf(r, 118);
+  TopoDS_Shape shape = block(80, 40, 40);
+  shape = cut(shape, holeSolid(gp_Pnt(15, 20, 40), kDown, {{r, r, 20}, {r, 0, cone}}));
+  shape = cut(shape, holeSolid(gp_Pnt(40, 20, 40), kDown, {{3.3, 3.3, 41}}));
+  shape = cut(shape, holeSolid(gp_Pnt(65, 20, 40), kDown, {{5, 5, 12}}));
+  // The bores' chords lie inside their circles by r (1 - cos(a / 2)) for an angular deflection a: 0.02 mm at the
+  // default 0.2 rad, more than the gouge tolerance a drill of the exact size cuts them by. A finer tessellation here.
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("art2part_holes_" + std::to_string(getpid()) + "_paths.step")).string();
+  STEPControl_Writer writer;
+  writer.Transfer(shape, STEPControl_AsIs);
+  ASSERT_EQ(writer.Write(path.c_str()), IFSelect_RetDone);
+  LoadOptions fine;
+  fine.angular_tolerance = 0.04;
+  const Part part = loadPart(path, fine);
+  std::filesystem::remove(path);
+
+  const std::vector<Hole> holes = findHoles(part);
+  ASSERT_EQ(holes.size(), 3u);
+  std::vector<HoleMachining> methods;
+  Toolpath toolpath;
+  std::vector<Tool> tools;
+  const auto add = [&](Toolpath run, const std::string& tool) {
+    for (CutterLocation& point : run) point.op = static_cast<int>(toolpath.empty() ? 0 : toolpath.back().op + 1);
+    toolpath.insert(toolpath.end(), run.begin(), run.end());
+    if (std::none_of(tools.begin(), tools.end(), [&](const Tool& t) { return t.id == tool; }))
+      tools.push_back(*library().find(tool));
+  };
+  for (const Hole& hole : holes) {
+    methods.push_back(chooseHoleMethod(hole, library()));
+    const HoleMachining& m = methods.back();
+    SCOPED_TRACE(describe(hole));
+    ASSERT_NE(m.method, HoleMethod::None) << m.reason;
+    if (m.method == HoleMethod::Drill) {
+      add(drillingPath({hole}, *library().find(m.spot), true, 0, 5), m.spot);
+      add(drillingPath({hole}, *library().find(m.drill), false, 0, 5), m.drill);
+      const Toolpath run = drillingPath({hole}, *library().find(m.drill), false, 0, 5);
+      double deepest = 1e9;
+      for (const CutterLocation& point : run) deepest = std::min(deepest, point.tip.z());
+      EXPECT_NEAR(40 - deepest, m.tip_depth, 1e-9);
+    } else {
+      add(helixPath(hole, *library().find(m.drill), 0, 5), m.drill);
+    }
+  }
+  EXPECT_EQ(std::count_if(methods.begin(), methods.end(), [](const HoleMachining& m) { return m.method == HoleMethod::Helix; }), 1);
+  const Mesh plugs = holePlugs(holes, methods);
+  VerifyOptions options;
+  options.resolution = 0.1;
+  options.stock_mesh = &plugs;
+  const auto start = std::chrono::steady_clock::now();
+  const VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, toolpath, tools, options);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("holes swept: %zu points, %lld poses, %.2f s; plugs %.1f mm^3, removed %.1f, left %.3f mm^3 "
+              "(thickest %.3f mm), worst gouge %.4f mm\n",
+              toolpath.size(), static_cast<long long>(report.poses), seconds, signedVolume(plugs),
+              report.removed_volume_mm3, report.leftover_volume_mm3, report.leftover_max_mm, report.worst_gouge_mm);
+  EXPECT_EQ(report.gouges, 0) << report.worst_gouge_mm;
+  EXPECT_EQ(report.collisions, 0);
+  // The plugs are gone: what is left is the lattice's rounding along the bores' walls (a tenth of a cell's share).
+  EXPECT_LT(report.leftover_volume_mm3, 0.01 * signedVolume(plugs));
+  EXPECT_NEAR(report.removed_volume_mm3, signedVolume(plugs), 0.01 * signedVolume(plugs));
+}
+
+// ---- the shared parts -----------------------------------------------------------------------------------------------
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Whether some drill of the library matches the hole's bore and bottom (the oracle: sizes and points only).
+bool aDrillMatches(const Hole& hole, const HoleOptions& options = {}) {
+  if (hole.bottom == HoleBottom::Other) return false;
+  for (const Tool& tool : library().tools) {
+    if (tool.type != ToolType::Drill || std::abs(tool.point_angle_deg - 90) < 1) continue;
+    if (std::abs(tool.diameter - hole.diameter) > options.diameter_tolerance + 2 * options.measurement_credit) continue;
+    if (hole.bottom != HoleBottom::Cone || std::abs(tool.point_angle_deg - hole.point_angle_deg) <= 0.5) return true;
+  }
+  return false;
+}
+
+// CTC-02: 84 cylinder faces of 8.38 mm and 60 of 10.1 mm, each half of a hole, and 148 cones of 59 deg (halves too):
+// 74 holes with 118 deg cone bottoms (42 + 30 + 2 of 12 mm), every one drilled with the 118 deg jobber of its size.
+void expectCtc02Holes(const Part& part, const std::vector<Hole>& holes, bool exact_faces) {
+  std::map<std::string, int> drilled;
+  std::map<int, int> hole_of_face;
+  for (size_t h = 0; h < holes.size(); ++h) {
+    const Hole& hole = holes[h];
+    for (int f : hole.bore_faces) hole_of_face[f] += 1;
+    if (hole.bottom != HoleBottom::Cone) continue;
+    SCOPED_TRACE(describe(hole));
+    EXPECT_NEAR(hole.point_angle_deg, 118, 0.1);
+    EXPECT_NEAR(hole.total_depth - hole.depth, pointLengthOf(0.5 * hole.diameter, 118), 0.01);
+    const HoleMachining m = chooseHoleMethod(hole, library());
+    EXPECT_EQ(m.method, HoleMethod::Drill) << m.reason;
+    EXPECT_EQ(m.spot, "spot6");
+    ++drilled[m.drill];
+  }
+  EXPECT_EQ(drilled["hss8.4"], 42);
+  EXPECT_EQ(drilled["hss10.1"], 30);
+  EXPECT_EQ(drilled["hss12"], 2);
+  if (!exact_faces) return;
+  // The faces, independently: every 8.38 and 10.1 mm hole face and every 59 deg cone is in exactly one hole's bore.
+  int bore_faces = 0, cones = 0;
+  for (int f = 0; f < static_cast<int>(part.faces.size()); ++f) {
+    const Face& face = part.faces[f];
+    const bool bore = face.type == SurfaceType::Cylinder && face.concave &&
+                      (std::abs(face.radius - 4.19) < 1e-6 || std::abs(face.radius - 5.05) < 1e-6);
+    const bool cone = face.type == SurfaceType::Cone && face.concave && std::abs(face.half_angle - 59 * kPi / 180) < 1e-6;
+    if (!bore && !cone) continue;
+    (bore ? bore_faces : cones) += 1;
+    EXPECT_EQ(hole_of_face[f], 1) << "face " << f;
+  }
+  EXPECT_EQ(bore_faces, 84 + 60);
+  EXPECT_EQ(cones, 148);
+}
+
+TEST(SharedParts, Ctc02EveryConeBottomedHoleIsFoundAndDrilled) {
+  const Part part = loadPart(kParts + "/nist_ctc_02_asme1_rc.stp");
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<Hole> holes = findHoles(part);
+  std::printf("CTC-02 (STEP): %zu holes in %.3f s over %d triangles\n", holes.size(), secondsSince(start),
+              part.mesh.triangleCount());
+  expectCtc02Holes(part, holes, true);
+}
+
+// The same part as a mesh (122k triangles, faces by segmentation, float vertices): the same holes, the same drills.
+TEST(SharedParts, Ctc02FineMeshGivesTheSameHoles) {
+  const Part part = loadPart(kParts + "/nist_ctc_02_asme1_rc_fine_tess.stl");
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<Hole> holes = findHoles(part);
+  std::printf("CTC-02 (mesh): %zu holes in %.3f s over %d triangles\n", holes.size(), secondsSince(start),
+              part.mesh.triangleCount());
+  expectCtc02Holes(part, holes, false);
+}
+
+// CTC-01, ANC101, featuretype (inch): every hole a library drill matches (the oracle above) is drilled, unless its
+// reason names what stops the drill (reach, holder, breakthrough); the count printed.
+TEST(SharedParts, HolesALibraryDrillMatchesAreDrilled) {
+  for (const auto& [name, expected] : std::map<std::string, int>{
+           {"nist_ctc_01_asme1_rd.stp", 2}, {"ANC101.stp", 0}, {"featuretype.STEP", 9}}) {
+    SCOPED_TRACE(name);
+    const Part part = loadPart(kParts + "/" + name);
+    const std::vector<Hole> holes = findHoles(part);
+    int matched = 0, drilled = 0;
+    for (const Hole& hole : holes) {
+      const HoleMachining m = chooseHoleMethod(hole, library());
+      if (!aDrillMatches(hole)) {
+        EXPECT_NE(m.method, HoleMethod::Drill) << describe(hole);
+        continue;
+      }
+      ++matched;
+      if (m.method == HoleMethod::Drill) {
+        ++drilled;
+        std::printf("%s: %s drilled with %s (tip %.3f mm)\n", name.c_str(), describe(hole).c_str(), m.drill.c_str(),
+                    m.tip_depth);
+      } else {
+        EXPECT_TRUE(m.reason.find("deep") != std::string::npos || m.reason.find("meets") != std::string::npos ||
+                    m.reason.find("fit") != std::string::npos || m.reason.find("beyond") != std::string::npos)
+            << describe(hole) << ": " << m.reason;
+      }
+    }
+    std::printf("%s: %zu holes, %d a library drill matches, %d drilled\n", name.c_str(), holes.size(), matched, drilled);
+    EXPECT_EQ(drilled, expected);
+  }
 }
 
 }  // namespace

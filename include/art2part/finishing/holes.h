@@ -58,6 +58,8 @@ struct Hole {
   double counterbore_diameter = 0, counterbore_depth = 0;  // a wider cylinder at the mouth with a flat step; 0: none
   double countersink_angle_deg = 0, countersink_diameter = 0;  // a cone opening at the mouth; 0: none
   double arc_deg = 360;        // how far round the axis the main bore's faces reach (at least HoleOptions::min_arc_deg)
+  double radial_deviation = 0; // mm, the largest distance of the main bore's vertices from its cylinder: how well the
+                               // diameter is known (B-rep: ~0; a float STL's segmented face: ~1e-5; a loose fit: more)
   std::vector<HoleSegment> segments;  // mouth first (by `from`, then `to`)
   std::vector<int> faces;             // every face of the hole (those of its segments), ascending
   std::vector<int> bore_faces;        // the faces a drill or end mill of the bore's diameter makes: the main bore from
@@ -76,7 +78,9 @@ struct Hole {
 };
 
 struct HoleOptions {
-  double diameter_tolerance = 0.02;       // mm: a drill matches a bore this close to its diameter
+  double diameter_tolerance = 0.02;       // mm: a drill matches a bore this close to its diameter...
+  double measurement_credit = 0.005;      // ...plus twice its radial_deviation up to this (a mesh's vertices are floats:
+                                          // 8.38 mm from an STL must match 8.4 as from the STEP)
   double point_angle_tolerance_deg = 0.5; // a cone bottom matches a drill point this close to its angle
   double axis_tolerance_deg = 0.1;        // faces of one hole share their axis within this...
   double axis_line_tolerance = 0.01;      // ...and their axis line within this many mm (radii equal within it too)

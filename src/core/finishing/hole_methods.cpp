@@ -141,10 +141,11 @@ struct Choice {
 Choice chooseDrill(const Hole& hole, const ToolLibrary& library, const HoleOptions& o) {
   Choice choice;
   const std::string size = mm(hole.diameter) + " mm";
+  const double tolerance =
+      o.diameter_tolerance + 2 * std::min(hole.radial_deviation, o.measurement_credit) + kSizeSlack;
   std::vector<const Tool*> near;
   for (const Tool& tool : library.tools)
-    if (tool.type == ToolType::Drill && !isSpot(tool, o) &&
-        std::abs(tool.diameter - hole.diameter) <= o.diameter_tolerance + kSizeSlack)
+    if (tool.type == ToolType::Drill && !isSpot(tool, o) && std::abs(tool.diameter - hole.diameter) <= tolerance)
       near.push_back(&tool);
   if (near.empty()) {
     choice.reason = "no drill within " + format("%g", o.diameter_tolerance) + " mm of " + size;

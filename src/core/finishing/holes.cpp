@@ -498,6 +498,13 @@ bool describeHole(const Part& part, const FaceIndex& index, const AxisLine& line
   hole.arc_deg = arcDegrees(part, index, line, hole.segments[bore].faces);
   if (hole.arc_deg < options.min_arc_deg) return false;
   hole.diameter = hole.segments[bore].diameter_from;
+  for (int f : hole.segments[bore].faces) {
+    const Face& cylinder = part.faces[f];
+    const AxisLine own{cylinder.point, cylinder.axis.normalized(), 0, 0};
+    for (int v : index.vertices[f])
+      hole.radial_deviation =
+          std::max(hole.radial_deviation, std::abs(radial(own, part.mesh.vertices[v]) - cylinder.radius));
+  }
   hole.depth = hole.segments[bore].to;
   for (const HoleSegment& s : hole.segments) hole.total_depth = std::max(hole.total_depth, s.to);
   describeEnds(hole, bore, closing_segment, line.line);
