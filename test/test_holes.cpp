@@ -278,6 +278,71 @@ TEST(FindHoles, BossesGroovesAndPartialCylindersAreNotHoles) {
   EXPECT_NEAR(holes[0].arc_deg, 360 - 2 * std::acos(0.95) * 180 / kPi, 2);
 }
 
+// The holder is kept clear of the part by measurement, and the simulation agrees: a 6 mm hole at the floor of a
+// 20 mm wide pocket 30 mm deep is drilled; 60 mm deep, the ER16 nut (32 mm) would enter the pocket: no drill reaches.
+TEST(FindHoles, HolderClearanceIsMeasuredOnThePartAndTheSimulationAgrees) {
+  const double r = 3, cone = pointLengthOf(r, 118);
+  for (const double pocket : {30.0, 60.0}) {
+    SCOPED_TRACE(pocket);
+    TopoDS_Shape shape = cut(block(60, 60, 80), BRepPrimAPI_MakeBox(gp_Pnt(20, 20, 80 - pocket), 20, 20, pocket + 1).Shape());
+    shape = cut(shape, holeSolid(gp_Pnt(30, 30, 80 - pocket), kDown, {{r, r, 10}, {r, 0, cone}}));
+    const Part part = partOf(shape, "pocket" + std::to_string(static_cast<int>(pocket)));
+    const std::vector<Hole> holes = findHoles(part);
+    ASSERT_EQ(holes.size(), 1u);
+    const Hole& hole = holes[0];
+    // The pocket's walls 10 mm from the axis up to its top; nothing above.
+    const int wall_bands = static_cast<int>(pocket / hole.clearance_step);
+    EXPECT_NEAR(hole.free_radius[0], 10, 1e-9);
+    EXPECT_NEAR(hole.free_radius[wall_bands - 1], 10, 1e-9);
+    EXPECT_TRUE(std::isinf(hole.free_radius[wall_bands + 1]));
+    const HoleMachining m = chooseHoleMethod(hole, library());
+    Tool drill = *library().find("hss6");
+    if (pocket < 50) {
+      EXPECT_EQ(m.method, HoleMethod::Drill) << m.reason;
+      EXPECT_EQ(m.drill, "hss6");
+    } else {
+      EXPECT_EQ(m.method, HoleMethod::None);
+      EXPECT_NE(m.reason.find("holder"), std::string::npos) << m.reason;
+      EXPECT_NE(m.reason.find("10.00 mm from the axis"), std::string::npos) << m.reason;
+      std::printf("60 mm deep pocket: %s\n", m.reason.c_str());
+    }
+    // The judge: the same drill's path swept through the part (stock: the plug).
+    HoleMachining forced;
+    forced.method = HoleMethod::Drill;
+    const Mesh plug = holePlugs(holes, {forced});
+    VerifyOptions options;
+    options.resolution = 0.25;
+    options.stock_mesh = &plug;
+    const VerificationReport report =
+        verifyToolpath(part.mesh, part.triangle_face, drillingPath(holes, drill, false, 0, 5), {drill}, options);
+    EXPECT_EQ(report.collisions > 0, pocket > 50) << report.collisions << " collisions, deepest "
+                                                  << report.worst_collision_mm;
+  }
+}
+
+// A through hole that breaks into a slot 1.5 mm high: the drill's point (2.5 mm) would reach the slot's floor, so no
+// drill; a flat end mill goes 1 mm past the far end instead.
+TEST(FindHoles, BreakthroughStopsShortOfMaterialBeyond) {
+  TopoDS_Shape shape = cut(block(60, 40, 30), BRepPrimAPI_MakeBox(gp_Pnt(-1, 10, 15), 62, 20, 1.5).Shape());
+  shape = cut(shape, holeSolid(gp_Pnt(30, 20, 30), kDown, {{4.2, 4.2, 13.5}}));
+  const Part part = partOf(shape, "slot");
+  const std::vector<Hole> holes = findHoles(part);
+  ASSERT_EQ(holes.size(), 1u);
+  const Hole& hole = holes[0];
+  SCOPED_TRACE(describe(hole));
+  EXPECT_EQ(hole.bottom, HoleBottom::Through);
+  EXPECT_NEAR(hole.total_depth, 13.5, 1e-6);
+  EXPECT_LE(hole.free_beyond, 1.5);  // never overstated
+  EXPECT_GE(hole.free_beyond, 1.45);  // to its bands' 0.05 mm
+  const HoleMachining m = chooseHoleMethod(hole, library());
+  EXPECT_EQ(m.method, HoleMethod::Helix) << m.reason;
+  EXPECT_EQ(m.drill, "flat6");
+  EXPECT_NEAR(m.tip_depth, 13.5 + 1, 1e-9);
+  HoleOptions tight;
+  tight.breakthrough = 2;  // 2 mm past the far end: only what the slot leaves, less the margin
+  EXPECT_NEAR(helixDepth(hole, tight), 13.5 + hole.free_beyond - tight.holder_margin, 1e-9);
+}
+
 // ---- plugs and paths, judged by the simulation ----------------------------------------------------------------------
 
 TEST(HolePlugs, AreClosedOutwardAndFillTheBore) {
