@@ -156,14 +156,17 @@ Mesh holePlugs(const std::vector<Hole>& holes, const std::vector<HoleMachining>&
 // is the holes' axis: in the order given (nearest neighbour from the first is the caller's choice), for each a rapid at
 // the clearance height over it, a rapid down to the R plane above its mouth (retract_height), a feed straight down the
 // axis to the depth, a rapid back to the R plane and up to the clearance height (`clearance_above` mm over the highest
-// mouth along the axis). The depth: the drill's tip as chooseHoleMethod puts it (tip_depth: the cone's apex or the
+// mouth along the axis, raised over the part's material measured round the holes, free_radius, + holder_margin; the
+// rapids between holes cross what lies farther than clearance_radius from every axis: the caller passes enough to
+// clear the part there, e.g. the setup's stock top + its clearance - the highest mouth). The depth: the drill's tip as chooseHoleMethod puts it (tip_depth: the cone's apex or the
 // shoulder at the bore's end, whichever is shallower, for a cone bottom; the floor for a flat one; the far end + point
 // length + breakthrough, within free_beyond less holder_margin, for a through hole); `spot`: spotDepth. The post turns
 // each such run into G81 / G83 (G98: back to the clearance height). Throws InputError when the holes' axes differ by
 // more than axis_tolerance_deg, or `tool` is not a drill.
 Toolpath drillingPath(const std::vector<Hole>& holes, const Tool& tool, bool spot, int setup, double clearance_above,
                       const HoleOptions& options = {});
-// Helical milling of one hole with a flat end mill: from the clearance height down to the R plane over the centre, out
+// Helical milling of one hole with a flat end mill: from the clearance height (as drillingPath's) down to the R plane
+// over the centre, out
 // to radius (bore - tool) / 2, down a helix of helix_pitch_ratio x D per turn to the floor (a through hole: the far end
 // + breakthrough, within free_beyond less holder_margin), a full circle there, back to the centre, up. Chords inside
 // the circle by at most helix_chord. Throws InputError for a tool that is not a flat end mill narrower than the bore.

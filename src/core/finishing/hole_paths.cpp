@@ -63,12 +63,21 @@ void push(Toolpath& path, CutterLocation point) {
   path.push_back(std::move(point));
 }
 
-// The clearance level along the axis: `clearance_above` over the highest mouth, never under the R planes.
+// The clearance level along the axis: `clearance_above` over the highest mouth, never under the R planes nor under the
+// part's material measured round any of the holes (free_radius) with holder_margin to spare.
 double clearanceLevel(const std::vector<Hole>& holes, const Vec3& axis, double clearance_above,
                       const HoleOptions& options) {
-  double top = -kInfinity;
-  for (const Hole& hole : holes) top = std::max(top, hole.mouth.dot(axis));
-  return top + std::max(clearance_above, options.retract_height);
+  double top = -kInfinity, material = -kInfinity;
+  for (const Hole& hole : holes) {
+    const double mouth = hole.mouth.dot(axis);
+    top = std::max(top, mouth);
+    for (size_t k = hole.free_radius.size(); k-- > 0;)
+      if (std::isfinite(hole.free_radius[k])) {
+        material = std::max(material, mouth + (k + 1) * hole.clearance_step);
+        break;
+      }
+  }
+  return std::max(top + std::max(clearance_above, options.retract_height), material + options.holder_margin);
 }
 
 }  // namespace
