@@ -236,6 +236,18 @@ TEST(FindHoles, ThroughCounterboredAndCountersunkHoles) {
   EXPECT_EQ(plain->countersink_diameter, 0);
   // The spot drill starts at the bore: in the counterbore, 6.5 + 3 mm down.
   EXPECT_NEAR(chooseHoleMethod(*counterbored, library()).spot_depth, 9.5, 1e-9);
+  // From below: the plain hole is the same hole upside down; the counterbored one has a narrower stretch first.
+  const Hole below = reversedHole(part, *plain);
+  EXPECT_NEAR((below.axis + Vec3::UnitZ()).norm(), 0, 1e-9);
+  EXPECT_NEAR((below.mouth - Vec3(15, 20, 0)).norm(), 0, 1e-6);
+  EXPECT_NEAR(below.diameter, 6.6, 1e-9);
+  EXPECT_EQ(chooseHoleMethod(below, library()).drill, "carb6.6");
+  const Hole back = reversedHole(part, *counterbored);
+  EXPECT_NEAR(back.diameter, 11, 1e-9);
+  const HoleMachining blocked = chooseHoleMethod(back, library());
+  EXPECT_EQ(blocked.method, HoleMethod::None);
+  EXPECT_NE(blocked.reason.find("a narrower stretch (6.60 mm)"), std::string::npos) << blocked.reason;
+  EXPECT_THROW(reversedHole(part, Hole{}), InputError);
 }
 
 TEST(FindHoles, TiltedHoleKeepsItsMeasures) {

@@ -136,6 +136,12 @@ struct HoleMachining {
 // data (faces without triangles, degenerate axes are skipped). Cost: O(holes x triangles) for the clearance bands.
 std::vector<Hole> findHoles(const Part& part, const HoleOptions& options = {});
 
+// A through hole seen from its other end (a setup that reaches only that end): axis and mouth there, segments, bore,
+// counterbore and countersink, free_radius and free_beyond measured again (a hole counterbored at its first mouth
+// then has the counterbore as its deepest cylinder: no drill passes the bore before it). Throws InputError for a hole
+// that is not through or whose faces are not the part's.
+Hole reversedHole(const Part& part, const Hole& hole, const HoleOptions& options = {});
+
 // The method for one hole with the library's tools (drills: type drill with a point other than a spot drill's 90 deg;
 // helical milling: flat end mills). A drill must match the bore's diameter and the bottom (any point for a through
 // hole, a point within the tolerance for a cone bottom; a flat bottom is helix-milled when an end mill can, else drilled

@@ -426,8 +426,9 @@ void describeEnds(Hole& hole, size_t bore, const std::vector<char>& closing_segm
 namespace {
 
 // The hole made of `faces` along `line`, or false when they make none (a partial bore, closed at both ends).
+// `forced_sign`: 0 finds the mouth; +1 or -1 puts it at the end the line's axis (or its opposite) points to.
 bool describeHole(const Part& part, const FaceIndex& index, const AxisLine& line, const std::vector<int>& faces,
-                  const HoleOptions& options, Hole& hole) {
+                  const HoleOptions& options, Hole& hole, int forced_sign = 0) {
   // Extents along the line, and which faces close an end (the axis pierces them; a cone reaching its apex).
   double t_lo = kInfinity, t_hi = -kInfinity, bore_radius = 0;
   std::vector<Extent> extents;
@@ -450,7 +451,10 @@ bool describeHole(const Part& part, const FaceIndex& index, const AxisLine& line
   }
   if (closed_lo && closed_hi) return false;  // a void inside the part
   Orientation orientation;
-  if (closed_lo || closed_hi) {
+  if (forced_sign != 0) {
+    if (closed_lo || closed_hi) return false;  // only a through hole opens at both ends
+    orientation.sign = forced_sign;
+  } else if (closed_lo || closed_hi) {
     orientation.sign = closed_lo ? 1 : -1;
   } else {
     // Through: the mouth is the wider end (a counterbore, a countersink), else the end facing +z, +x, +y.
@@ -544,6 +548,24 @@ void checkOptions(const HoleOptions& o) {
 }
 
 }  // namespace
+
+Hole reversedHole(const Part& part, const Hole& hole, const HoleOptions& options) {
+  checkOptions(options);
+  if (hole.bottom != HoleBottom::Through) throw InputError("reversedHole: the hole is not through");
+  int seed = -1;
+  for (int f : hole.faces)
+    if (f >= 0 && f < static_cast<int>(part.faces.size()) && validCylinder(part.faces[f])) {
+      seed = f;
+      break;
+    }
+  if (seed < 0) throw InputError("reversedHole: the hole's faces are not this part's");
+  const AxisLine line = lineOf(part, part.faces[seed], options);
+  Hole reversed;
+  const int sign = line.axis.dot(hole.axis) > 0 ? -1 : 1;
+  if (!describeHole(part, indexFaces(part), line, hole.faces, options, reversed, sign))
+    throw InputError("reversedHole: from its other end the faces make no hole (a partial bore)");
+  return reversed;
+}
 
 std::vector<Hole> findHoles(const Part& part, const HoleOptions& options) {
   checkOptions(options);
