@@ -132,7 +132,8 @@ struct HoleMachining {
 // min_arc_deg round their axis: fillets, slots' ends) are not holes. A plane belongs to a hole when it is square to the
 // axis and lies within a coaxial cylinder of the hole on the side its normal points to (a flat bottom, a counterbore's
 // step), never the face the hole opens in. The bottom is the face the axis pierces; with none the hole is through, its
-// mouth the end with the counterbore or countersink, else the end facing +z (then +x, +y). Never throws on a part's
+// mouth the end with the counterbore or countersink, else the end facing +z (then +x, +y), unless material lies right
+// past its far end within the bore (free_beyond 0): then its bottom is Other. Never throws on a part's
 // data (faces without triangles, degenerate axes are skipped). Cost: O(holes x triangles) for the clearance bands.
 std::vector<Hole> findHoles(const Part& part, const HoleOptions& options = {});
 

@@ -203,7 +203,8 @@ Choice chooseHelixMill(const Hole& hole, const ToolLibrary& library, const HoleO
   const double lo = o.helix_tool_min * hole.diameter, hi = o.helix_tool_max * hole.diameter;
   const std::string range = "no flat end mill of " + mm(lo) + ".." + mm(hi) + " mm";
   if (hole.bottom != HoleBottom::Flat && hole.bottom != HoleBottom::Through) {
-    choice.reason = "helix: a " + std::string(holeBottomName(hole.bottom)) + " bottom needs a flat floor";
+    choice.reason = std::string("helix: a ") + (hole.bottom == HoleBottom::Cone ? "cone" : "rounded or free-form") +
+                    " bottom needs a flat floor";
     return choice;
   }
   const double tip = helixDepth(hole, o);

@@ -518,8 +518,13 @@ bool describeHole(const Part& part, const FaceIndex& index, const AxisLine& line
   if (hole.countersink_diameter > 0)
     hole.countersink_angle_deg = 2 * part.faces[hole.segments.front().faces.front()].half_angle / kDegree;
   hole.faces = faces;
-  hole.signature = signatureOf(hole);
   measureSurroundings(part, hole, options);
+  if (hole.bottom == HoleBottom::Through && hole.free_beyond <= 0) {
+    // Open on its faces but material right past the far end, within the bore: a bottom that is none of the hole's
+    // surfaces (a free-form or an off-axis face).
+    hole.bottom = HoleBottom::Other;
+  }
+  hole.signature = signatureOf(hole);
   return true;
 }
 
