@@ -207,7 +207,7 @@ std::vector<ExpectedMove> expectedMoves(const MachineProgram& program, const std
       ExpectedMove move{&step, index, {}, tool_length};
       const Vec3 xyz = programXyz(step.joints, tool_length);
       const std::vector<double> joints = jointVector(machine, step.joints);
-      bool changed = step.kind == StepKind::Retract;
+      bool changed = step.kind == StepKind::Retract || step.cycle >= 0;  // a cycle's moves are made even when still
       for (int j = 0; j < machine.jointCount(); ++j) {
         const double value = machine.joints[j].rotary ? joints[j] / kDeg : xyz[j];
         move.position[canonicalIndex(machine.joints[j].name)] = value;
@@ -595,6 +595,124 @@ TEST(Post, ThreePlusTwoTakesTheTurnOfCInsideItsTravel) {
   const ProgramStep& last = program.setups[0].steps.back();
   EXPECT_NEAR(last.joints.tilt, 30 * kDeg, 1e-9);
   EXPECT_NEAR(last.joints.rotary, 270 * kDeg, 1e-9);
+}
+
+// ---- drilling cycles -----------------------------------------------------------------------------------------------
+
+Tool drillTool() {
+  Tool tool = makeTool("drill6.8", ToolType::Drill);
+  tool.diameter = 6.8;
+  tool.shank_diameter = 6.8;
+  tool.point_angle_deg = 118;
+  tool.flute_length = 28;  // as long as the others (60 mm with the holder): the test machines' travel is short
+  tool.plunge_mm_min = tool.feed_mm_min = 500;
+  tool.max_stepdown = 10;  // the peck
+  return tool;
+}
+
+std::vector<Tool> drillingTools() { return {drillTool(), makeTool("flat6", ToolType::Flat)}; }
+
+// Holes drilled along `axis` from mouths at `mouths` (part frame), R plane 2 mm over each mouth, depth `depths`: as
+// holes.h's drillingPath lays them out (clearance 10 mm over the highest mouth). `last_up`: the last hole goes back up
+// to the clearance (G98) or stops at its R plane (G99).
+void addDrilling(Toolpath& path, int op, int setup, const Vec3& axis, const std::vector<Vec3>& mouths,
+                 const std::vector<double>& depths, bool last_up = true) {
+  double top = -1e9;
+  for (const Vec3& mouth : mouths) top = std::max(top, mouth.dot(axis));
+  for (size_t h = 0; h < mouths.size(); ++h) {
+    const Vec3 above = mouths[h] + (top + 10 - mouths[h].dot(axis)) * axis, r_plane = mouths[h] + 2 * axis;
+    path.push_back(point(op, setup, "drill6.8", MoveKind::Rapid, above, axis));
+    path.push_back(point(op, setup, "drill6.8", MoveKind::Rapid, r_plane, axis));
+    path.push_back(point(op, setup, "drill6.8", MoveKind::Feed, mouths[h] - depths[h] * axis, axis));
+    path.push_back(point(op, setup, "drill6.8", MoveKind::Rapid, r_plane, axis));
+    if (h + 1 < mouths.size() || last_up) path.push_back(point(op, setup, "drill6.8", MoveKind::Rapid, above, axis));
+  }
+}
+
+// Setup 0 from the top: a 10 mm hole (12 mm of feed: G81) and a 25 mm one (27 mm: G83, pecks of 10); setup 1 from
+// the side (-y, the part turned for it), ending at its R plane (G99); then a pocket with the flat mill.
+Toolpath drillingJob() {
+  Toolpath path;
+  addDrilling(path, 0, 0, Vec3::UnitZ(), {Vec3(0, 0, 20), Vec3(15, 5, 20)}, {10, 25});
+  addDrilling(path, 1, 1, -Vec3::UnitY(), {Vec3(-5, -15, 10), Vec3(5, -15, 12)}, {8, 6}, false);
+  addPocket(path, 2, 1, "flat6", Vec3(0, -17, 15), -Vec3::UnitY(), Vec3::UnitX());
+  return path;
+}
+
+int countOf(const std::string& text, const std::string& what) {
+  int count = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++count;
+  return count;
+}
+
+TEST(Post, DrillingRunsBecomeCannedCyclesThatRs274ExpandsIntoOurSteps) {
+  for (const char* name : {"trunnion_ac", "mill_3axis"}) {
+    SCOPED_TRACE(name);
+    const Machine machine = machineNamed(name);
+    Toolpath path = drillingJob();
+    if (!machine.fiveAxis()) path.resize(10);  // the mill makes only the upright setup 0
+    const MachineProgram program = buildMachineProgram(machine, path, drillingTools(), "drilled", turnedSetupOne());
+    ASSERT_EQ(program.mode, PostMode::ThreePlusTwo);
+    const std::string job = jobProgramText(program);
+    EXPECT_EQ(countOf(job, "G98 G81 "), machine.fiveAxis() ? 2 : 1) << job;
+    EXPECT_EQ(countOf(job, "G98 G83 "), 1) << job;
+    EXPECT_NE(job.find(" Q10.0000 F500.000"), std::string::npos) << job;
+    if (machine.fiveAxis()) {
+      EXPECT_EQ(countOf(job, "G99 G81 "), 1) << job;  // the last hole stops at its R plane
+    }
+    EXPECT_GE(countOf(job, "G80\n"), machine.fiveAxis() ? 3 : 2) << job;
+    // Every cycle is one line; the steps are its motion: rs274's canonical moves equal them one for one and land on
+    // the toolpath (checkAgainstToolpath), pecks included.
+    const Rs274Run run = expectAccepted(job, program, std::string("drilling_") + name);
+    checkAgainstToolpath(program, path, run, allSetups(program));
+    // G83 from R 22 with Q 10 to -5: feeds to 12, to 2 (each followed by a rapid out to R and back to 0.254 mm over
+    // the depth), and to -5.
+    std::vector<double> feeds;
+    for (size_t m = 0; m < run.moves.size(); ++m)
+      if (run.feed[m] && std::abs(run.moves[m][0] - 15) < 1e-6 && std::abs(run.moves[m][1] - 5) < 1e-6)
+        feeds.push_back(run.moves[m][2]);
+    EXPECT_EQ(feeds, (std::vector<double>{12, 2, -5}));
+  }
+}
+
+TEST(Post, FiveAxisModeAndCyclesOffKeepPlainMoves) {
+  const Machine machine = machineNamed("trunnion_ac");
+  PostOptions five = turnedSetupOne();
+  five.mode = PostMode::FiveAxis;
+  const Toolpath path = drillingJob();
+  const MachineProgram continuous = buildMachineProgram(machine, path, drillingTools(), "drilled", five);
+  std::string job = jobProgramText(continuous);
+  EXPECT_EQ(job.find("G81"), std::string::npos);
+  EXPECT_EQ(job.find("G83"), std::string::npos);
+  checkAgainstToolpath(continuous, path, expectAccepted(job, continuous, "drilling_5axis"), allSetups(continuous));
+  PostOptions off = turnedSetupOne();
+  off.drilling_cycles = false;
+  const MachineProgram plain = buildMachineProgram(machine, path, drillingTools(), "drilled", off);
+  job = jobProgramText(plain);
+  EXPECT_EQ(job.find("G81"), std::string::npos);
+  for (const SetupProgram& setup : plain.setups) EXPECT_TRUE(setup.cycles.empty());
+}
+
+// The trajectory is the cycle's motion: its feed moves travel what rs274's STRAIGHT_FEEDs do (the pecks' extra
+// length included), at the drill's feed.
+TEST(Post, TrajectoryTimesTheCyclesMotion) {
+  const Machine machine = machineNamed("mill_3axis");
+  Toolpath path = drillingJob();
+  path.resize(10);
+  const MachineProgram program = buildMachineProgram(machine, path, drillingTools(), "drilled", {});
+  const Rs274Run run = expectAccepted(jobProgramText(program), program, "drilling_time");
+  double canonical_feed = 0;
+  for (size_t m = 1; m < run.moves.size(); ++m)
+    if (run.feed[m]) canonical_feed += std::abs(run.moves[m][2] - run.moves[m - 1][2]);
+  const std::vector<JointWaypoint> waypoints = programWaypoints(program);
+  double feed = 0;
+  for (size_t w = 1; w < waypoints.size(); ++w)
+    if (waypoints[w].move == MoveKind::Feed) feed += (waypoints[w].joints.linear - waypoints[w - 1].joints.linear).norm();
+  // 12 mm of G81; G83 from R 22: 10, 10 + 0.254, 7 + 0.254 (to -5): 27.508 mm.
+  EXPECT_NEAR(canonical_feed, 12 + 10 + 10.254 + 7.254, 1e-3);
+  EXPECT_NEAR(feed, canonical_feed, 1e-3);
+  const JointTrajectory trajectory = parameterizeTrajectory(machine, waypoints);
+  EXPECT_GT(trajectory.duration(), 60 * feed / 500);
 }
 
 TEST(Post, ToolTablesInMillimetresAndForRs274InInches) {

@@ -84,7 +84,8 @@ TEST(ToolLibrary, EveryToolIsValidAndRealistic) {
     SCOPED_TRACE(tool.id);
     EXPECT_NO_THROW(checkTool(tool));
     EXPECT_GE(tool.flute_length, 1.5 * tool.diameter);
-    EXPECT_LE(tool.flute_length, 7 * tool.diameter);  // 3 x D stub drills: 20 mm flutes at 3 mm
+    // 3 x D stub drills: 20 mm flutes at 3 mm; DIN 338 jobbers: 20 mm at 1.6 mm (12.5 x D)
+    EXPECT_LE(tool.flute_length, (tool.type == ToolType::Drill ? 13 : 7) * tool.diameter);
     EXPECT_GT(tool.stickout, tool.flute_length);
     EXPECT_FALSE(tool.holder.empty());
     EXPECT_LE(tool.spindle_rpm, 24000);
@@ -92,6 +93,122 @@ TEST(ToolLibrary, EveryToolIsValidAndRealistic) {
     EXPECT_LE(tool.max_stepdown, 3 * tool.diameter + 1e-9);
     EXPECT_GT(toolLength(tool), tool.stickout + 50);  // a holder a machinist would recognise
   }
+}
+
+// ---- the drill cabinet (drill_series) -------------------------------------------------------------------------------
+
+int countIds(const ToolLibrary& library, const std::string& prefix, ToolType type) {
+  int count = 0;
+  for (const Tool& tool : library.tools)
+    if (tool.type == type && tool.id.rfind(prefix, 0) == 0) ++count;
+  return count;
+}
+
+TEST(DrillSeries, HoldsTheMetricSeriesTapAndClearanceAndInchSizes) {
+  const ToolLibrary library = loadToolLibrary(kLibrary);
+  // 3.0 .. 14.0 by 0.1: 111 sizes per family, each id the prefix and the size's shortest decimal form.
+  for (const char* prefix : {"hss", "carb"}) {
+    for (int tenth = 30; tenth <= 140; ++tenth) {
+      const double d = tenth / 10.0;
+      char id[32];
+      std::snprintf(id, sizeof id, tenth % 10 ? "%s%.1f" : "%s%.0f", prefix, d);
+      const Tool* tool = library.find(id);
+      ASSERT_NE(tool, nullptr) << id;
+      EXPECT_EQ(tool->type, ToolType::Drill);
+      EXPECT_NEAR(tool->diameter, d, 1e-12) << id;
+      EXPECT_DOUBLE_EQ(tool->point_angle_deg, std::string(prefix) == "hss" ? 118 : 140) << id;
+    }
+  }
+  // ISO 273 clearances and tap drills beyond the series, inch fractions 1/16 .. 1/2 by 1/64, letters, numbers.
+  for (const char* id : {"hss1.6", "hss2.05", "hss2.2", "hss2.5", "hss2.9", "hss14.5", "carb14.5", "hss_1_16in",
+                         "hss_5_64in", "hss_1_4in", "hss_31_64in", "hss_1_2in", "hss_A", "hss_H", "hss_Z", "hss_no7",
+                         "hss_no50"})
+    EXPECT_NE(library.find(id), nullptr) << id;
+  EXPECT_EQ(countIds(library, "hss_", ToolType::Drill), 29 + 26 + 17);
+  // Past 14 mm, HSS in 0.25 mm steps to 20 mm (DIN 338's straight shanks): 14.25 .. 20, 24 sizes.
+  for (const char* id : {"hss14.25", "hss16", "hss19.75", "hss20"}) EXPECT_NE(library.find(id), nullptr) << id;
+  EXPECT_EQ(library.find("hss20.25"), nullptr);
+  EXPECT_DOUBLE_EQ(library.find("hss20")->flute_length, 140);
+  EXPECT_DOUBLE_EQ(library.find("hss20")->holder.front().diameter, 50);  // ER32 for 16 .. 20 mm shanks
+  EXPECT_NEAR(library.find("hss_H")->diameter, 0.266 * 25.4, 1e-9);
+  EXPECT_NEAR(library.find("hss_17_64in")->diameter, 17 * 25.4 / 64, 1e-9);
+  // The stubs that were there keep their ids and data (plans and tests name them).
+  const Tool* stub = library.find("drill8");
+  ASSERT_NE(stub, nullptr);
+  EXPECT_DOUBLE_EQ(stub->flute_length, 41);
+  EXPECT_DOUBLE_EQ(stub->point_angle_deg, 140);
+  EXPECT_NE(library.find("spot6"), nullptr);
+  EXPECT_DOUBLE_EQ(library.find("spot6")->point_angle_deg, 90);
+}
+
+// DIN 338 N and DIN 6537 L lengths, holders by shank, and cutting data from Vc and the feed per rev.
+TEST(DrillSeries, GeometryAndCuttingDataFollowTheirRules) {
+  const ToolLibrary library = loadToolLibrary(kLibrary);
+  const Tool& hss = *library.find("hss8.4");
+  EXPECT_DOUBLE_EQ(hss.flute_length, 75);      // DIN 338: 7.6 .. 8.5 mm, 75 / 117
+  EXPECT_DOUBLE_EQ(hss.shank_diameter, 8.4);
+  EXPECT_DOUBLE_EQ(hss.stickout, 80);          // flutes + 5 mm of shank
+  EXPECT_EQ(hss.material, "hss");
+  EXPECT_DOUBLE_EQ(hss.holder.front().diameter, 32);  // ER16 takes shanks to 10 mm
+  EXPECT_DOUBLE_EQ(library.find("hss10.1")->holder.front().diameter, 42);  // ER25 above
+  EXPECT_DOUBLE_EQ(library.find("hss8.5")->flute_length, 75);
+  EXPECT_DOUBLE_EQ(library.find("hss8.6")->flute_length, 81);
+  EXPECT_DOUBLE_EQ(library.find("hss2.05")->flute_length, 24);
+  // rpm = 1000 Vc / (pi D) to 10 rpm; feed = rpm x 0.02 D mm/rev; peck 1.5 D.
+  EXPECT_DOUBLE_EQ(hss.spindle_rpm, std::round(75000 / (M_PI * 8.4) / 10) * 10);
+  EXPECT_DOUBLE_EQ(hss.feed_mm_min, std::round(hss.spindle_rpm * 0.02 * 8.4));
+  EXPECT_DOUBLE_EQ(hss.plunge_mm_min, hss.feed_mm_min);
+  EXPECT_DOUBLE_EQ(hss.max_stepdown, 12.6);
+  const Tool& carb = *library.find("carb8.4");
+  EXPECT_DOUBLE_EQ(carb.flute_length, 61);     // DIN 6537 L: 8 .. 10 mm, 61 / 103, shank 10
+  EXPECT_DOUBLE_EQ(carb.shank_diameter, 10);
+  EXPECT_DOUBLE_EQ(carb.spindle_rpm, std::round(150000 / (M_PI * 8.4) / 10) * 10);
+  EXPECT_DOUBLE_EQ(carb.feed_mm_min, std::round(carb.spindle_rpm * 0.025 * 8.4));
+  EXPECT_DOUBLE_EQ(library.find("carb3")->shank_diameter, 6);
+  EXPECT_DOUBLE_EQ(library.find("carb3")->spindle_rpm, 15920);
+  // 1.6 mm at 75 m/min: 14920 rpm, under the spindle's 24000; f = 0.032 mm/rev.
+  EXPECT_DOUBLE_EQ(library.find("hss1.6")->spindle_rpm, 14920);
+  EXPECT_DOUBLE_EQ(library.find("hss1.6")->feed_mm_min, std::round(14920 * 0.032));
+}
+
+using DrillSeriesYaml = TempFiles;
+
+TEST_F(DrillSeriesYaml, MistakesNameTheSeriesAndTheField) {
+  const std::string head = std::string("holders:\n  er16: [[32, 20], [40, 44], [63, 16]]\ntools:\n") +
+                           "  - {id: flat6, type: flat, diameter: 6, flute_length: 16, stickout: 28, holder: er16}\n"
+                           "drill_rules:\n"
+                           "  jobber:\n"
+                           "    {material: hss, point_angle_deg: 118, lengths: [[5, 52, 86], [10, 87, 133]], "
+                           "visible_shank: 5, min_grip: 15, holders: [[10, er16]], vc_m_min: 75, max_rpm: 24000, "
+                           "feed_per_rev: [0.02, 0.03, 0.3], peck: 1.5}\n"
+                           "drill_series:\n";
+  const auto load = [&](const std::string& series) {
+    const std::string path = file("tools.yaml", head + series);
+    return inputError([&] { loadToolLibrary(path); });
+  };
+  EXPECT_EQ(load("  - {rule: jobber, prefix: j, mm: {from: 3, to: 4, step: 0.5}}\n"), "");
+  {
+    const std::string path = file("ok.yaml", head + "  - {rule: jobber, prefix: j, mm: {from: 3, to: 4, step: 0.5}}\n");
+    const ToolLibrary library = loadToolLibrary(path);
+    ASSERT_EQ(library.tools.size(), 4u);
+    EXPECT_EQ(library.tools[1].id, "j3");
+    EXPECT_EQ(library.tools[2].id, "j3.5");
+    EXPECT_EQ(library.tools[3].id, "j4");
+  }
+  std::string message = load("  - {rule: nosuch, prefix: j, mm: [3]}\n");
+  EXPECT_TRUE(contains(message, "drill series 1") && contains(message, "nosuch")) << message;
+  message = load("  - {rule: jobber, prefix: j, mm: [12]}\n");
+  EXPECT_TRUE(contains(message, "12") && contains(message, "lengths")) << message;
+  message = load("  - {rule: jobber, prefix: j, mm: {from: 4, to: 3, step: 0.1}}\n");
+  EXPECT_TRUE(contains(message, "'to' below 'from'")) << message;
+  message = load("  - {rule: jobber, prefix: j, mm: [3], inch: {H: 0.266}}\n");
+  EXPECT_TRUE(contains(message, "exactly one")) << message;
+  message = load("  - {rule: jobber, prefix: j, mm: [3, 3]}\n");
+  EXPECT_TRUE(contains(message, "duplicate") && contains(message, "j3")) << message;
+  message = load("  - {rule: jobber, prefix: j, mm: [3], colour: red}\n");
+  EXPECT_TRUE(contains(message, "colour")) << message;
+  message = load("  - {rule: jobber, prefix: flat, mm: [6]}\n");
+  EXPECT_TRUE(contains(message, "duplicate tool id 'flat6'")) << message;
 }
 
 // The outline has no hole and no step down inside the flutes, and the holder at its face covers the shank.

@@ -7,7 +7,10 @@ The same motions as test/test_post.cpp's fiveAxisPath(), shortened so that the s
   op 1  a pass whose axis sweeps 0.6 deg past the C axis (C swings half a turn);
   op 2  the same straight through the singularity (C held);
   op 3  a 3-axis-like stretch (fixed tilted axis: X Y Z feed moves in G94 after the rotaries are positioned).
-Usage: make_toolpath.py DIR
+With --drill, a 3+2 drilling job instead (holes.h's drillingPath layout): one setup whose axis leans 20 deg (the
+rotaries positioned once), a 6.8 mm drill down a hole 12 mm from its R plane (G81) and one 27 mm (G83, pecks of
+10 mm), each from the clearance height down to 2 mm over its mouth, to its depth, and back up (G98).
+Usage: make_toolpath.py DIR [--drill]
 """
 import json
 import math
@@ -69,7 +72,38 @@ def main(out):
         f.write("\n")
 
 
+def drilling(out):
+    tool = "drill6.8"
+    lean = math.radians(20)
+    axis = (0.0, -math.sin(lean), math.cos(lean))
+    dot = lambda a, b: sum(x * y for x, y in zip(a, b))
+    along = lambda p, t: [c + t * a for c, a in zip(p, axis)]
+    holes = [((-8.0, -4.0, 5.0), 10.0), ((8.0, 4.0, 5.0), 25.0)]
+    level = max(dot(m, axis) for m, _ in holes) + 10
+    rows = []
+    for mouth, depth in holes:
+        above, r_plane = along(mouth, level - dot(mouth, axis)), along(mouth, 2)
+        for move, tip in (("rapid", above), ("rapid", r_plane), ("feed", along(mouth, -depth)), ("rapid", r_plane),
+                          ("rapid", above)):
+            rows.append("0,0,%s,%s,%.6f,%.6f,%.6f,%.9f,%.9f,%.9f" % (tool, move, *tip, *axis))
+    os.makedirs(out, exist_ok=True)
+    with open(os.path.join(out, "toolpaths.csv"), "w") as f:
+        f.write("op,setup,tool,move,x,y,z,i,j,k\n")
+        f.write("\n".join(rows) + "\n")
+    tools = [{
+        "id": tool, "type": "drill", "diameter": 6.8, "corner_radius": 0, "point_angle_deg": 118, "flute_length": 28,
+        "shank_diameter": 6.8, "stickout": 30, "holder": [[20, 30]], "spindle_rpm": 8000, "feed_mm_min": 500,
+        "plunge_mm_min": 500, "max_stepdown": 10,
+    }]
+    with open(os.path.join(out, "tools.json"), "w") as f:
+        json.dump(tools, f, indent=2)
+        f.write("\n")
+
+
 if __name__ == "__main__":
-    if len(sys.argv) != 2:
-        sys.exit("usage: make_toolpath.py DIR")
-    main(sys.argv[1])
+    if len(sys.argv) == 3 and sys.argv[2] == "--drill":
+        drilling(sys.argv[1])
+    elif len(sys.argv) == 2:
+        main(sys.argv[1])
+    else:
+        sys.exit("usage: make_toolpath.py DIR [--drill]")

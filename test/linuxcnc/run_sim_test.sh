@@ -1,11 +1,12 @@
 #!/bin/bash
 # Integration test: a 5-axis program from our post, run on LinuxCNC 2.9's simulated xyzac-trt machine, headless.
 #
-#   test/linuxcnc/run_sim_test.sh [ART2PART_BINARY]      (default: catkin_ws/devel/lib/art2part/art2part)
+#   test/linuxcnc/run_sim_test.sh [ART2PART_BINARY [JOB]]  (default: catkin_ws/devel/lib/art2part/art2part, 5axis)
 #
-# 1. make_toolpath.py writes a hand-made continuous 5-axis job (toolpaths.csv, tools.json);
-# 2. `art2part post --machine config/machines/trunnion_ac.yaml --mode 5axis` writes program.ngc, tool.tbl,
-#    trajectory.csv;
+# 1. make_toolpath.py writes a hand-made job (toolpaths.csv, tools.json): JOB 5axis, a continuous 5-axis job; JOB
+#    drill, a 3+2 drilling job (G81 and G83 canned cycles at a tilted axis);
+# 2. `art2part post --machine config/machines/trunnion_ac.yaml --mode 5axis` (drill: --mode 3+2) writes program.ngc,
+#    tool.tbl, trajectory.csv;
 # 3. LinuxCNC starts headless (`linuxcnc -r`, xyzac-trt-test.ini: the sample sim's kinematics and travel, no GUI) with
 #    sim_driver.py as its display program, which homes, runs program.ngc with our tool table under identity kinematics
 #    while sampling the joints, then checks every toolpath point under LinuxCNC's xyzac-trt-kins (see sim_driver.py);
@@ -20,6 +21,12 @@ set -u
 HERE=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 REPO=$(cd "$HERE/../.." && pwd)
 ART2PART=${1:-$REPO/catkin_ws/devel/lib/art2part/art2part}
+JOB_KIND=${2:-5axis}
+case $JOB_KIND in
+  5axis) MAKE_ARGS=(); POST_MODE=5axis;;
+  drill) MAKE_ARGS=(--drill); POST_MODE=3+2;;
+  *) echo "linuxcnc_sim: FAIL: unknown job '$JOB_KIND' (5axis or drill)"; exit 1;;
+esac
 TIME_LIMIT=${A2P_TIME_LIMIT:-170}
 PY=/usr/bin/python3            # Debian's python3: the one with the `linuxcnc` module
 SKIP=77
@@ -100,8 +107,8 @@ trap cleanup EXIT
 trap 'say "interrupted"; STATUS=1; exit 1' INT TERM
 
 # ---- the job and the post ------------------------------------------------------------------------------------------
-"$PY" "$HERE/make_toolpath.py" "$JOB" || { say "FAIL: make_toolpath.py"; exit 1; }
-if ! "$ART2PART" post "$JOB" --machine "$REPO/config/machines/trunnion_ac.yaml" --mode 5axis >"$WORK/post.txt" 2>&1
+"$PY" "$HERE/make_toolpath.py" "$JOB" "${MAKE_ARGS[@]}" || { say "FAIL: make_toolpath.py"; exit 1; }
+if ! "$ART2PART" post "$JOB" --machine "$REPO/config/machines/trunnion_ac.yaml" --mode "$POST_MODE" >"$WORK/post.txt" 2>&1
 then
   cat "$WORK/post.txt"; say "FAIL: art2part post"; exit 1
 fi

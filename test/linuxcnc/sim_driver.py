@@ -85,10 +85,39 @@ def tool_lengths(job):
 WORD = re.compile(r"([A-Z])\s*([-+]?[0-9]*\.?[0-9]+)")
 
 
+G83_RAPID_DELTA = 0.010 * 25.4  # mm: rs274ngc's G83 comes back down to this above the depth reached
+
+
+def cycle_moves(z_now, x, y, z, r, q, old_z_mode):
+    """A canned drilling cycle (G81, or G83 when q > 0) as rs274ngc expands it (interp_cycles.cc), from program Z
+    z_now: [(x, y, z, motion)] with motion 0 rapid, 1 feed. The retract is split at R when it passes it (a toolpath
+    point lies there)."""
+    moves = []
+    old_z = z_now
+    if z_now < r:
+        moves.append((None, None, r, 0))
+        z_now = r
+    moves.append((x, y, z_now, 0))
+    if z_now != r:
+        moves.append((x, y, r, 0))
+    if q > 0:
+        d = r - q
+        while d > z:
+            moves += [(x, y, d, 1), (x, y, r, 0), (x, y, d + G83_RAPID_DELTA, 0)]
+            d -= q
+    moves.append((x, y, z, 1))
+    clear = max(old_z, r) if old_z_mode else r
+    if clear > r:
+        moves.append((x, y, r, 0))
+    moves.append((x, y, clear, 0))
+    return moves
+
+
 def program_waypoints(path, lengths, start):
-    """The joints (mm, deg) after every motion line of program.ngc, from `start`; with the line numbers (N)."""
+    """The joints (mm, deg) after every motion line of program.ngc, from `start`; with the line numbers (N). A canned
+    drilling cycle's line gives every move of the cycle (cycle_moves)."""
     joints = list(start)
-    tool, length, motion = 0, 0.0, None
+    tool, length, motion, old_z_mode = 0, 0.0, None, True
     waypoints = []
     with open(path) as f:
         for raw in f:
@@ -107,13 +136,29 @@ def program_waypoints(path, lengths, start):
             if 49 in g:
                 length = 0.0
             for code in g:
-                if code in (0, 1):
+                if code in (0, 1, 81, 83):
                     motion = int(code)
+                if code == 80:
+                    motion = None
+                if code in (98, 99):
+                    old_z_mode = code == 98
             axis_words = {k: float(v) for k, v in words if k in NAMES}
             if not axis_words or 10 in g or 92 in g or 92.1 in g:
                 continue
             if motion is None:
                 raise Failure("program.ngc N%s: axis words without G0/G1" % number)
+            if motion in (81, 83):
+                value = dict((k, float(v)) for k, v in words)
+                if "R" not in value or "Z" not in value or (motion == 83 and "Q" not in value):
+                    raise Failure("program.ngc N%s: a canned cycle needs Z, R (and Q for G83)" % number)
+                x, y = value.get("X", joints[0]), value.get("Y", joints[1])
+                for mx, my, mz, kind in cycle_moves(joints[2] - length, x, y, value["Z"], value["R"],
+                                                    value.get("Q", 0.0) if motion == 83 else 0.0, old_z_mode):
+                    if mx is not None:
+                        joints[0], joints[1] = mx, my
+                    joints[2] = mz + length
+                    waypoints.append((number, list(joints), kind))
+                continue
             for k, v in axis_words.items():
                 i = NAMES.index(k)
                 if 53 in g:

@@ -11,6 +11,8 @@
 //               G93 G1 X Y Z A C F<1/min>                 when one does: inverse time, 1 / the move's minutes, the
 //                                                         minutes being max(tip length / feed, slowest joint at its
 //                                                         max velocity)
+//   drilling    G98 G81 X Y Z R F  /  G98 G83 X Y Z R Q F  (G99 when it retracts to R), once for all the steps of
+//               the cycle; G80 before the next line that is not a cycle
 // and M9 M5 M30 at the end. Lines are numbered N10, N20, ...; numbers are fixed-point (4 decimals: 0.1 um, 1e-4 deg).
 // The job program (program.ngc of the plan contract) runs every setup in order with `M0 (re-fixture: ...)` between
 // them; a setup program runs one setup alone.

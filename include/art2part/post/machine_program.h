@@ -20,6 +20,14 @@
 // coordinates) and A/B C are the rotary joints in degrees. Work offsets G54 and G92 must be zero (the programs set G54
 // to zero and cancel G92).
 //
+// Drilling (3+2 and 3-axis only): a drill's run in toolpaths.csv of a rapid to a point (the R plane), a feed straight
+// down the tool axis, a rapid back up to that point, reached from straight above it, becomes one canned cycle: G81,
+// or G83 pecking Q = the drill's max_stepdown (its diameter when 0) when the feed is longer than peck_ratio x its
+// diameter; G98 when the next point is a rapid straight back up to where the cycle began (the clearance height), G99
+// otherwise. The program's steps are the cycle's motion exactly as rs274ngc expands it (the XY move at the start Z,
+// even of zero length, the Z move to R, the feed, G83's pecks: back to R, down again to 0.254 mm above the last depth,
+// the retract), each tagged with the cycle, so the trajectory times what the controller runs. 5-axis mode keeps G0/G1.
+//
 // Safety: before every tool change and every rotary reposition the spindle goes up to the safe height (G53 G0 Z, the
 // gauge point retract_z in machine coordinates), the rotaries turn up there, then X Y, then Z down to the first point.
 // A 5-axis rapid that the joints cannot follow continuously (the pose needs the other IK branch) is made the same way.
@@ -58,6 +66,8 @@ struct PostOptions {
   double retract_margin = 1.0;  // mm
   // A feed move heading down the tool axis steeper than this (deg from the axis) is a plunge: tool plunge_mm_min.
   double plunge_angle_deg = 45;
+  bool drilling_cycles = true;  // 3+2: drilling runs become G81 / G83 (see above); false: G0 / G1 throughout
+  double peck_ratio = 3.0;      // a drilling feed longer than this many drill diameters is pecked (G83)
   std::map<int, FixturePose> fixtures;  // per setup: where the part sits, overriding the machine file's
   std::vector<std::string> preamble;    // G-code lines after the modal set-up, e.g. "M429" on the LinuxCNC sim
   IkOptions ik;
@@ -86,6 +96,17 @@ struct ProgramStep {
   int row = -1;                     // the toolpaths.csv point (0-based) the move heads for; -1: retract, approach
   bool at_row = false;              // the move ends on that point (else on a subdivision point before it)
   std::string comment;              // printed before the step when not empty
+  int cycle = -1;                   // >= 0: a step of SetupProgram::cycles[cycle] (printed as the cycle's one line)
+};
+
+// A canned drilling cycle (G81 / G83) at one hole; the steps tagged with it are its motion.
+struct DrillCycle {
+  JointPosition bottom;             // the joints at the hole's bottom: the cycle's X Y Z
+  double r_z = 0;                   // the joint Z of the R plane
+  double clear_z = 0;               // the joint Z it retracts to: where it began (G98) or the R plane (G99)
+  bool retract_to_start = true;     // G98 (else G99)
+  double peck = 0;                  // G83's Q, mm; 0: G81
+  double feed_mm_min = 0;
 };
 
 struct SetupProgram {
@@ -93,6 +114,7 @@ struct SetupProgram {
   FixturePose fixture;
   std::vector<ProgramStep> steps;  // begins with a retract and a tool change, ends with a retract
   std::vector<int> tools;          // tool numbers in the order they are used
+  std::vector<DrillCycle> cycles;  // the canned cycles the steps refer to, in order
 };
 
 struct MachineProgram {

@@ -101,8 +101,14 @@ class GcodeWriter {
 
   void setupBody(const SetupProgram& setup) {
     comment("setup " + std::to_string(setup.setup) + ": " + fixtureText(setup.fixture));
+    printed_cycle_ = -1;
     for (const ProgramStep& step : setup.steps) {
       if (!step.comment.empty()) comment(step.comment);
+      if (step.cycle >= 0) {
+        cycleStep(setup.cycles.at(step.cycle), step);
+        continue;
+      }
+      endCycles();
       switch (step.kind) {
         case StepKind::Retract: retract(step); break;
         case StepKind::ToolChange: toolChange(step); break;
@@ -112,12 +118,14 @@ class GcodeWriter {
   }
 
   void programStop(const std::string& why) {
+    endCycles();
     line("M9");
     line("M5");
     line("M0 " + commentText(why));
   }
 
   std::string end() {
+    endCycles();
     line("M9");
     line("M5");
     line("M30");
@@ -217,6 +225,35 @@ class GcodeWriter {
     joints_ = step.joints;
   }
 
+  // A canned cycle's one line, at its first step; its other steps are the motion the line makes.
+  void cycleStep(const DrillCycle& cycle, const ProgramStep& step) {
+    if (step.cycle != printed_cycle_) {
+      printed_cycle_ = step.cycle;
+      const Vec3 xyz = programXyz(cycle.bottom, tool_length_);
+      std::string words = std::string(feed_mode_ == FeedMode::UnitsPerMinute ? "" : "G94 ") +
+                          (cycle.retract_to_start ? "G98" : "G99") + (cycle.peck > 0 ? " G83" : " G81");
+      for (int c = 0; c < 3; ++c) {
+        words_[c] = gcodeNumber(c == 2 ? cycle.clear_z - tool_length_ : xyz[c]);
+        words += " " + machine_.joints[c].name + gcodeNumber(xyz[c]);
+      }
+      words += " R" + gcodeNumber(cycle.r_z - tool_length_);
+      if (cycle.peck > 0) words += " Q" + gcodeNumber(cycle.peck);
+      words += " F" + gcodeNumber(cycle.feed_mm_min, 3);
+      line(words);
+      feed_mode_ = FeedMode::UnitsPerMinute;
+      last_feed_ = cycle.feed_mm_min;
+      in_cycles_ = true;
+    }
+    joints_ = step.joints;
+  }
+
+  // G80 after canned cycles, before anything else moves.
+  void endCycles() {
+    if (!in_cycles_) return;
+    line("G80");
+    in_cycles_ = false;
+  }
+
   const MachineProgram& program_;
   const Machine& machine_;
   std::string out_;
@@ -226,6 +263,8 @@ class GcodeWriter {
   std::vector<std::string> words_;  // the last number written per joint ("" = unknown)
   FeedMode feed_mode_ = FeedMode::UnitsPerMinute;
   double last_feed_ = std::numeric_limits<double>::quiet_NaN();
+  int printed_cycle_ = -1;  // the setup's cycle whose line is out
+  bool in_cycles_ = false;  // a canned cycle is the motion mode (G80 cancels it)
 };
 
 }  // namespace

@@ -172,6 +172,17 @@ void ProgramBuilder::approach(const JointPosition& target, MoveKind move, int ro
   moveTo(down);
 }
 
+int ProgramBuilder::addCycle(const DrillCycle& cycle) {
+  setup().cycles.push_back(cycle);
+  return static_cast<int>(setup().cycles.size()) - 1;
+}
+
+void ProgramBuilder::cycleStep(ProgramStep step, int cycle) {
+  step.kind = StepKind::Move;
+  step.cycle = cycle;
+  append(step);
+}
+
 void ProgramBuilder::note(const std::string& comment) {
   note_ = note_.empty() ? comment : note_ + ", " + comment;
 }

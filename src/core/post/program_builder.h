@@ -45,6 +45,9 @@ class ProgramBuilder {
   // To `target` from above: rotaries (at the safe height), X Y, then Z down (rapid, or at the plunge feed).
   void approach(const JointPosition& target, MoveKind move, int row);
   void moveTo(ProgramStep step);  // a Move; dropped when the joints do not change
+  // Drilling cycles: the cycle's index in the setup, and its steps (kept even when they do not move: rs274 makes them).
+  int addCycle(const DrillCycle& cycle);
+  void cycleStep(ProgramStep step, int cycle);
   void note(const std::string& comment);  // a comment printed before the next step
   double feedFor(int from_row, int to_row) const;  // the tool's feed, or its plunge feed down the axis
 
@@ -60,6 +63,23 @@ class ProgramBuilder {
   int tool_ = 0;
   std::string note_;
 };
+
+// The linear joints that put the tip at a part-frame point with the rotaries held: tip(lin) = origin + map * lin.
+// With the rotaries fixed the tip is an affine (rigid) function of the linear joints, so one 3x3 solve is exact.
+class FixedOrientation {
+ public:
+  FixedOrientation(const Machine& machine, const Placement& placement, const JointPosition& rotaries);
+  JointPosition jointsFor(const Vec3& tip) const;
+
+ private:
+  JointPosition rotaries_;
+  Vec3 origin_;
+  Eigen::Matrix3d inverse_;
+};
+
+// 3+2: when the points from `row` on are a drilling run (machine_program.h), appends its canned cycle's steps and
+// returns the first row after it; else returns `row` and appends nothing.
+int planDrillingCycle(ProgramBuilder& builder, const FixedOrientation& orientation, PointRun run, int row);
 
 // The planners: append the steps of one setup's points (retracts, tool changes, approaches and moves).
 void planThreePlusTwo(ProgramBuilder& builder, PointRun setup_run);

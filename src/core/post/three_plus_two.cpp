@@ -9,35 +9,26 @@
 
 namespace art2part::post_detail {
 
+FixedOrientation::FixedOrientation(const Machine& machine, const Placement& placement, const JointPosition& rotaries)
+    : rotaries_(rotaries) {
+  JointPosition joints = rotaries;
+  joints.linear = Vec3::Zero();
+  origin_ = forwardKinematics(machine, placement, joints).tip;
+  Eigen::Matrix3d map;
+  for (int c = 0; c < 3; ++c) {
+    joints.linear = Vec3::Unit(c);
+    map.col(c) = forwardKinematics(machine, placement, joints).tip - origin_;
+  }
+  inverse_ = map.inverse();
+}
+
+JointPosition FixedOrientation::jointsFor(const Vec3& tip) const {
+  JointPosition joints = rotaries_;
+  joints.linear = inverse_ * (tip - origin_);
+  return joints;
+}
+
 namespace {
-
-// The linear joints that put the tip at a part-frame point with the rotaries held: tip(lin) = origin + map * lin.
-class FixedOrientation {
- public:
-  FixedOrientation(const Machine& machine, const Placement& placement, const JointPosition& rotaries)
-      : rotaries_(rotaries) {
-    JointPosition joints = rotaries;
-    joints.linear = Vec3::Zero();
-    origin_ = forwardKinematics(machine, placement, joints).tip;
-    Eigen::Matrix3d map;
-    for (int c = 0; c < 3; ++c) {
-      joints.linear = Vec3::Unit(c);
-      map.col(c) = forwardKinematics(machine, placement, joints).tip - origin_;
-    }
-    inverse_ = map.inverse();
-  }
-
-  JointPosition jointsFor(const Vec3& tip) const {
-    JointPosition joints = rotaries_;
-    joints.linear = inverse_ * (tip - origin_);
-    return joints;
-  }
-
- private:
-  JointPosition rotaries_;
-  Vec3 origin_;
-  Eigen::Matrix3d inverse_;
-};
 
 // The setup's one tool axis, or an error naming the two points that disagree.
 void requireOneAxis(const ProgramBuilder& builder, PointRun run) {
@@ -146,6 +137,11 @@ void planThreePlusTwo(ProgramBuilder& builder, PointRun setup_run) {
     builder.note("op " + std::to_string(path[run.begin].op));
     builder.approach(orientation.jointsFor(path[run.begin].tip), path[run.begin].move, run.begin);
     for (int row = run.begin + 1; row < run.end; ++row) {
+      const int after_cycle = planDrillingCycle(builder, orientation, run, row);
+      if (after_cycle > row) {
+        row = after_cycle - 1;
+        continue;
+      }
       ProgramStep step;
       step.move = path[row].move;
       step.joints = orientation.jointsFor(path[row].tip);

@@ -9,40 +9,11 @@
 
 #include "art2part/geometry/mesh.h"
 #include "art2part/tooling/tool.h"
+#include "library_yaml.h"
 
 namespace art2part {
 
-namespace {
-
-int wholeFlutes(double flutes, const std::string& where) {
-  if (!(flutes >= 1 && flutes <= 100 && flutes == std::floor(flutes)))
-    throw InputError(where + ": 'flutes' must be a whole number from 1 to 100");
-  return static_cast<int>(flutes);
-}
-
-// Checks a tool and that its id is new; prefixes any error with where it came from (which names the tool already).
-void addTool(std::vector<Tool>& tools, Tool tool, const std::string& where) {
-  try {
-    checkTool(tool);
-  } catch (const InputError& error) {
-    std::string what = error.what();
-    const std::string named = "tool '" + tool.id + "': ";
-    if (what.rfind(named, 0) == 0) what = what.substr(named.size());
-    throw InputError(where + ": " + what);
-  }
-  for (const Tool& other : tools)
-    if (other.id == tool.id) throw InputError(where + ": duplicate tool id '" + tool.id + "'");
-  tools.push_back(std::move(tool));
-}
-
-// ---- config/tools.yaml ----------------------------------------------------------------------------------------------
-
-using HolderMap = std::map<std::string, std::vector<HolderStep>>;
-
-const std::set<std::string> kYamlKeys = {"id",           "type",          "diameter",     "corner_radius",
-                                         "point_angle_deg", "flute_length", "shank_diameter", "stickout",
-                                         "holder",       "flutes",        "spindle_rpm",  "feed_mm_min",
-                                         "plunge_mm_min", "max_stepdown", "max_stepover", "material"};
+namespace tooling_detail {
 
 double yamlNumber(const YAML::Node& entry, const std::string& key, const std::string& where) {
   const YAML::Node value = entry[key];
@@ -63,6 +34,40 @@ std::string yamlText(const YAML::Node& entry, const std::string& key, const std:
   if (!value || !value.IsScalar()) throw InputError(where + ": missing or malformed '" + key + "'");
   return value.as<std::string>();
 }
+
+// Checks a tool and that its id is new; prefixes any error with where it came from (which names the tool already).
+void addTool(std::vector<Tool>& tools, Tool tool, const std::string& where) {
+  try {
+    checkTool(tool);
+  } catch (const InputError& error) {
+    std::string what = error.what();
+    const std::string named = "tool '" + tool.id + "': ";
+    if (what.rfind(named, 0) == 0) what = what.substr(named.size());
+    throw InputError(where + ": " + what);
+  }
+  for (const Tool& other : tools)
+    if (other.id == tool.id) throw InputError(where + ": duplicate tool id '" + tool.id + "'");
+  tools.push_back(std::move(tool));
+}
+
+}  // namespace tooling_detail
+
+namespace {
+
+using namespace tooling_detail;
+
+int wholeFlutes(double flutes, const std::string& where) {
+  if (!(flutes >= 1 && flutes <= 100 && flutes == std::floor(flutes)))
+    throw InputError(where + ": 'flutes' must be a whole number from 1 to 100");
+  return static_cast<int>(flutes);
+}
+
+// ---- config/tools.yaml ----------------------------------------------------------------------------------------------
+
+const std::set<std::string> kYamlKeys = {"id",           "type",          "diameter",     "corner_radius",
+                                         "point_angle_deg", "flute_length", "shank_diameter", "stickout",
+                                         "holder",       "flutes",        "spindle_rpm",  "feed_mm_min",
+                                         "plunge_mm_min", "max_stepdown", "max_stepover", "material"};
 
 std::vector<HolderStep> yamlSteps(const YAML::Node& list, const std::string& where) {
   if (!list.IsSequence()) throw InputError(where + ": a holder is a list of [diameter, length] steps");
@@ -139,7 +144,12 @@ std::string entryName(const YAML::Node& entry, size_t index) {
 
 ToolLibrary yamlLibrary(const YAML::Node& root, const std::string& file) {
   if (!root.IsMap() || !root["tools"] || !root["tools"].IsSequence())
-    throw InputError(file + ": expected a 'tools' list (and optionally named 'holders')");
+    throw InputError(file + ": expected a 'tools' list (and optionally named 'holders', 'drill_rules', 'drill_series')");
+  for (const auto& section : root) {
+    const std::string name = section.first.as<std::string>();
+    if (name != "tools" && name != "holders" && name != "drill_rules" && name != "drill_series")
+      throw InputError(file + ": unknown section '" + name + "' (tools, holders, drill_rules, drill_series)");
+  }
   const HolderMap holders = yamlHolders(root, file);
   ToolLibrary library;
   const YAML::Node tools = root["tools"];
@@ -156,6 +166,7 @@ ToolLibrary yamlLibrary(const YAML::Node& root, const std::string& file) {
     }
     addTool(library.tools, std::move(tool), where);
   }
+  addDrillSeries(root, holders, file, library.tools);
   if (library.tools.empty()) throw InputError(file + ": no tools");
   return library;
 }

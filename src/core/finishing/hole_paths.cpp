@@ -1,0 +1,162 @@
+// What the holes' methods make of them: the plugs roughing treats as part, the drilling runs the post turns into
+// canned cycles, the helices of helical milling.
+#include <algorithm>
+#include <cmath>
+
+#include "hole_internal.h"
+
+namespace art2part {
+
+using namespace hole_detail;
+
+namespace {
+
+constexpr double kPlugChord = 0.01;  // mm: a plug's chords lie inside its bore's circle by at most this
+constexpr int kPlugMinSides = 24;
+constexpr int kHelixMinSides = 12;
+
+int sidesFor(double radius, double chord, int least) {
+  if (radius <= chord) return least;
+  return std::max(least, static_cast<int>(std::ceil(kPi / std::acos(1 - chord / radius))));
+}
+
+// A closed prism of `sides` round the axis from depth `top` to `bottom` below the mouth, its bottom a cap or a cone to
+// `apex` (> bottom), outward.
+void addPlug(Mesh& mesh, const Hole& hole, double top, double bottom, double apex) {
+  const double radius = 0.5 * hole.diameter;
+  const int n = sidesFor(radius, kPlugChord, kPlugMinSides);
+  Vec3 u, v;
+  orthonormalPair(hole.axis, u, v);  // u x v = axis: angles grow counter-clockwise seen from above
+  const int first = static_cast<int>(mesh.vertices.size());
+  const Vec3 upper = hole.mouth - top * hole.axis, lower = hole.mouth - bottom * hole.axis;
+  for (int k = 0; k < n; ++k) {
+    const double angle = 2 * kPi * k / n;
+    const Vec3 out = radius * (std::cos(angle) * u + std::sin(angle) * v);
+    mesh.vertices.push_back(upper + out);
+    mesh.vertices.push_back(lower + out);
+  }
+  const int top_centre = static_cast<int>(mesh.vertices.size());
+  mesh.vertices.push_back(upper);
+  mesh.vertices.push_back(apex > bottom ? Vec3(hole.mouth - apex * hole.axis) : lower);
+  const int bottom_centre = top_centre + 1;
+  for (int k = 0; k < n; ++k) {
+    const int p = first + 2 * k, q = first + 2 * ((k + 1) % n);  // upper ring p, q; lower ring p + 1, q + 1
+    mesh.triangles.push_back({top_centre, p, q});
+    mesh.triangles.push_back({p + 1, q + 1, q});
+    mesh.triangles.push_back({p + 1, q, p});
+    mesh.triangles.push_back({bottom_centre, q + 1, p + 1});
+  }
+}
+
+CutterLocation location(const Tool& tool, int setup, MoveKind move, const Vec3& tip, const Vec3& axis) {
+  CutterLocation point;
+  point.setup = setup;
+  point.tool = tool.id;
+  point.move = move;
+  point.tip = tip;
+  point.axis = axis;
+  return point;
+}
+
+void push(Toolpath& path, CutterLocation point) {
+  if (!path.empty() && path.back().move == point.move && (path.back().tip - point.tip).norm() < 1e-9) return;
+  path.push_back(std::move(point));
+}
+
+// The clearance level along the axis: `clearance_above` over the highest mouth, never under the R planes nor under the
+// part's material measured round any of the holes (free_radius) with holder_margin to spare.
+double clearanceLevel(const std::vector<Hole>& holes, const Vec3& axis, double clearance_above,
+                      const HoleOptions& options) {
+  double top = -kInfinity, material = -kInfinity;
+  for (const Hole& hole : holes) {
+    const double mouth = hole.mouth.dot(axis);
+    top = std::max(top, mouth);
+    for (size_t k = hole.free_radius.size(); k-- > 0;)
+      if (std::isfinite(hole.free_radius[k])) {
+        material = std::max(material, mouth + (k + 1) * hole.clearance_step);
+        break;
+      }
+  }
+  return std::max(top + std::max(clearance_above, options.retract_height), material + options.holder_margin);
+}
+
+}  // namespace
+
+Mesh holePlugs(const std::vector<Hole>& holes, const std::vector<HoleMachining>& methods) {
+  if (holes.size() != methods.size())
+    throw InputError("holePlugs: " + std::to_string(holes.size()) + " holes but " + std::to_string(methods.size()) +
+                     " methods");
+  Mesh mesh;
+  for (size_t h = 0; h < holes.size(); ++h) {
+    const Hole& hole = holes[h];
+    if (methods[h].method == HoleMethod::None || !(hole.diameter > 0)) continue;
+    switch (hole.bottom) {
+      case HoleBottom::Cone: addPlug(mesh, hole, hole.bore_start, hole.depth, hole.total_depth); break;
+      case HoleBottom::Through: addPlug(mesh, hole, hole.bore_start, hole.total_depth, 0); break;
+      default: addPlug(mesh, hole, hole.bore_start, hole.depth, 0); break;
+    }
+  }
+  return mesh;
+}
+
+Toolpath drillingPath(const std::vector<Hole>& holes, const Tool& tool, bool spot, int setup, double clearance_above,
+                      const HoleOptions& options) {
+  if (tool.type != ToolType::Drill) throw InputError("drillingPath: tool '" + tool.id + "' is not a drill");
+  Toolpath path;
+  if (holes.empty()) return path;
+  const Vec3 axis = holes.front().axis.normalized();
+  for (size_t h = 1; h < holes.size(); ++h)
+    if (axis.cross(holes[h].axis.normalized()).norm() > std::sin(options.axis_tolerance_deg * kDegree) ||
+        axis.dot(holes[h].axis) < 0)
+      throw InputError("drillingPath: hole " + std::to_string(h) + " has another axis than hole 0 (one setup "
+                       "direction per drilling run)");
+  const double level = clearanceLevel(holes, axis, clearance_above, options);
+  for (const Hole& hole : holes) {
+    const double depth = spot ? spotDepth(hole, tool, options) : drillDepth(hole, tool, options);
+    const Vec3 above = hole.mouth + (level - hole.mouth.dot(axis)) * axis;
+    const Vec3 r_plane = hole.mouth + options.retract_height * axis;
+    push(path, location(tool, setup, MoveKind::Rapid, above, axis));
+    push(path, location(tool, setup, MoveKind::Rapid, r_plane, axis));
+    push(path, location(tool, setup, MoveKind::Feed, hole.mouth - depth * axis, axis));
+    push(path, location(tool, setup, MoveKind::Rapid, r_plane, axis));
+    push(path, location(tool, setup, MoveKind::Rapid, above, axis));
+  }
+  return path;
+}
+
+Toolpath helixPath(const Hole& hole, const Tool& tool, int setup, double clearance_above, const HoleOptions& options) {
+  if (tool.type != ToolType::Flat || !(tool.diameter < hole.diameter))
+    throw InputError("helixPath: tool '" + tool.id + "' is not a flat end mill narrower than the " +
+                     std::to_string(hole.diameter) + " mm hole");
+  if (!(options.helix_pitch_ratio > 0) || !(options.helix_chord > 0))
+    throw InputError("helixPath: helix_pitch_ratio and helix_chord must be positive");
+  const Vec3 axis = hole.axis.normalized();
+  Vec3 u, v;
+  orthonormalPair(axis, u, v);
+  const double offset = 0.5 * (hole.diameter - tool.diameter), depth = helixDepth(hole, options);
+  const double pitch = options.helix_pitch_ratio * tool.diameter;
+  const int sides = sidesFor(offset, options.helix_chord, kHelixMinSides);
+  const double level = clearanceLevel({hole}, axis, clearance_above, options);
+  const Vec3 r_plane = hole.mouth + options.retract_height * axis;
+  const auto at = [&](double angle, double below_r_plane) {
+    return Vec3(r_plane - below_r_plane * axis + offset * (std::cos(angle) * u + std::sin(angle) * v));
+  };
+  Toolpath path;
+  push(path, location(tool, setup, MoveKind::Rapid, hole.mouth + (level - hole.mouth.dot(axis)) * axis, axis));
+  push(path, location(tool, setup, MoveKind::Rapid, r_plane, axis));
+  push(path, location(tool, setup, MoveKind::Feed, at(0, 0), axis));
+  // Down the helix (counter-clockwise seen from the spindle: climb milling inside a bore), then one turn at the floor.
+  const double drop = options.retract_height + depth;
+  const int steps = std::max(1, static_cast<int>(std::ceil(drop / pitch * sides)));
+  for (int j = 1; j <= steps; ++j)
+    push(path, location(tool, setup, MoveKind::Feed, at(2 * kPi * j / sides, drop * j / steps), axis));
+  const double end_angle = 2 * kPi * steps / sides;
+  for (int j = 1; j <= sides; ++j)
+    push(path, location(tool, setup, MoveKind::Feed, at(end_angle + 2 * kPi * j / sides, drop), axis));
+  push(path, location(tool, setup, MoveKind::Feed, hole.mouth - depth * axis, axis));
+  push(path, location(tool, setup, MoveKind::Rapid, r_plane, axis));
+  push(path, location(tool, setup, MoveKind::Rapid, hole.mouth + (level - hole.mouth.dot(axis)) * axis, axis));
+  return path;
+}
+
+}  // namespace art2part
