@@ -100,7 +100,7 @@ struct FaceFinish {
 struct FinishingPlan {
   std::vector<FinishingOperation> operations;  // in machining order: setup by setup, each tool's operations together
   std::vector<FaceFinish> faces;               // one per face of the part, by face id
-  std::vector<Hole> holes;
+  std::vector<Hole> holes;                     // as made: a through hole reached from its far end turned round
   std::vector<HoleMachining> hole_methods;     // one per hole
   std::vector<int> tool_changes_per_setup;     // loads of a tool within each setup's finishing
   int tool_changes = 0;

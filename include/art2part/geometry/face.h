@@ -45,4 +45,11 @@ FaceCounts countFaces(const std::vector<Face>& faces);
 // Recomputes each face's area and triangle count from the mesh and the triangle -> face map.
 void updateFaceAreas(const Mesh& mesh, const std::vector<int>& triangle_face, std::vector<Face>& faces);
 
+// How far each face's triangles reach past its true surface into the space the surface bounds: a concave curved face
+// (a hole, a spherical or toroidal pocket, a concave cone) is tessellated by chords inside its circles, so the mesh's
+// material stands proud of the true surface by up to the chords' sag there, and a tool cutting the true surface cuts
+// that deep into the mesh. The largest over the face's triangles' centroids and edge midpoints, 0 for planes, convex
+// faces (their chords lie in the material: a tool on the true surface leaves the sag instead) and free-form faces.
+std::vector<double> concaveSag(const Mesh& mesh, const std::vector<int>& triangle_face, const std::vector<Face>& faces);
+
 }  // namespace art2part

@@ -66,6 +66,11 @@ PlanResult planPart(const Part& part, const ToolLibrary& library, const PlanOpti
 // The part with the holes a drill or a helix makes filled (holePlugs), for roughing: triangles appended in face -1.
 Part pluggedPart(const Part& part, const std::vector<Hole>& holes, const std::vector<HoleMachining>& methods);
 
+// What a gouge may reach beyond the tolerance under each face (VerifyOptions::face_allowance): the concave faces'
+// chord sag (concaveSag) and, on a drilled bore, how far its drill is over the bore's diameter, radially (a drill
+// within HoleOptions::diameter_tolerance makes the hole).
+std::vector<double> faceAllowances(const Part& part, const FinishingPlan& finishing, const ToolLibrary& library);
+
 // The verification lattice a plan uses when none is asked for: at least 0.4 mm and 1/300 of the part's diagonal.
 double planVerifyResolution(const Box& part_box);
 

@@ -30,6 +30,10 @@ struct VerifyOptions {
   int threads = 0;             // 0 = the hardware's
   int max_listed = 100;        // entries per list in the report (the totals count them all)
   double tool_chord_mm = 0.001;  // how closely a bull mill's torus corner is followed
+  // Per face id: how much deeper than the tolerance a gouge under that face may go before it counts: the chords' sag
+  // of a concave curved face (concaveSag, face.h: cutting its true surface cuts that deep into the mesh), and what a
+  // drilled bore's drill may be over its diameter, radially. Empty: none.
+  std::vector<double> face_allowance;
 };
 
 struct GougeRecord {

@@ -116,8 +116,12 @@ std::vector<FaceAssignment> assignFaces(const Part& part, const VisibilityResult
     if (hole_of[f] >= 0) {
       const Hole& hole = holes[hole_of[f]];
       std::vector<Offer> offers;
+      // Along the axis out of the hole, or for a through hole out of its other end.
+      const double cos_axis = std::cos(options.holes.axis_tolerance_deg * kPi / 180);
       for (const Offer& o : setup_offers)
-        if (o.d.dot(hole.axis) >= std::cos(options.holes.axis_tolerance_deg * kPi / 180)) offers.push_back(o);
+        if (o.d.dot(hole.axis) >= cos_axis ||
+            (hole.bottom == HoleBottom::Through && -o.d.dot(hole.axis) >= cos_axis))
+          offers.push_back(o);
       for (const Offer& o : ownDirectionOffers(setups, directions, hole.axis, options)) offers.push_back(o);
       bool done = false;
       for (const Offer& o : offers)

@@ -122,8 +122,6 @@ FinishingPlan planFinishing(const FinishingInput& in, const FinishingOptions& op
   const auto start = std::chrono::steady_clock::now();
   checkOptions(options);
   FinishingPlan plan;
-  plan.holes = in.holes;
-  plan.hole_methods = in.hole_methods;
   const Part& part = in.part;
   const Part solid = machiningSolid(part);
   const std::vector<const Tool*> flats = toolsOfType(in.library, ToolType::Flat);
@@ -251,37 +249,56 @@ FinishingPlan planFinishing(const FinishingInput& in, const FinishingOptions& op
     done += 1;
   }
 
-  // Holes: a spot and a drill run per direction and signature, a helix per hole.
+  // Holes: a spot and a drill run per setup and drill (one signature's tool load), a helix per hole. A through hole
+  // reached from its far end is made from there (reversedHole), its method chosen again for that end.
+  std::vector<Hole>& holes = plan.holes;
+  std::vector<HoleMachining>& methods = plan.hole_methods;
+  holes = in.holes;
+  methods = in.hole_methods;
   if (!plan.cancelled) {
     std::map<std::pair<int, std::string>, std::vector<int>> drilled;  // (setup, drill id) -> holes
     std::map<int, std::vector<int>> spotted;                          // setup -> holes
+    std::vector<char> turned(holes.size(), 0);
     for (const FaceAssignment& a : assignment) {
       if (a.hole < 0 || a.setup < 0) continue;
-      const HoleMachining& m = in.hole_methods[a.hole];
-      auto& list = drilled[{a.setup, m.method == HoleMethod::Drill ? m.drill : "helix:" + m.drill}];
+      if (!turned[a.hole] && a.direction.dot(holes[a.hole].axis) < 0) {
+        turned[a.hole] = 1;
+        holes[a.hole] = reversedHole(part, in.holes[a.hole], options.holes);
+        methods[a.hole] = chooseHoleMethod(holes[a.hole], in.library, options.holes);
+      }
+      const HoleMachining& m = methods[a.hole];
+      if (m.method == HoleMethod::None) continue;
+      auto& list = drilled[{a.setup, m.method == HoleMethod::Drill ? m.drill : "helix:" + m.drill}];  // NOLINT
       if (std::find(list.begin(), list.end(), a.hole) == list.end()) list.push_back(a.hole);
       if (m.method == HoleMethod::Drill && !m.spot.empty()) {
         auto& spots = spotted[a.setup];
         if (std::find(spots.begin(), spots.end(), a.hole) == spots.end()) spots.push_back(a.hole);
       }
     }
-    const double clearance_above = options.clearance;
-    for (const auto& [setup, holes] : spotted) {
+    // The rapids between holes at the setup's clearance plane: over the stock's top along the holes' axis.
+    auto clearanceAbove = [&](const std::vector<int>& group) {
+      const Vec3& d = holes[group.front()].axis;
+      double top = -1e300, mouth = -1e300;
+      for (const Vec3& v : stock.vertices) top = std::max(top, v.dot(d));
+      for (int h : group) mouth = std::max(mouth, holes[h].mouth.dot(d));
+      return std::max(options.holes.retract_height, top + options.clearance - mouth);
+    };
+    for (const auto& [setup, group] : spotted) {
       std::vector<Hole> list;
-      for (int h : holes) list.push_back(in.holes[h]);
-      const Tool* spot = in.library.find(in.hole_methods[holes.front()].spot);
+      for (int h : group) list.push_back(holes[h]);
+      const Tool* spot = in.library.find(methods[group.front()].spot);
       if (!spot) continue;
       FinishingOperation op;
       op.setup = setup;
       op.kind = FinishingKind::Drill;
       op.tool = spot->id;
       op.direction = list.front().axis;
-      op.path = drillingPath(list, *spot, true, setup, clearance_above, options.holes);
-      for (int h : holes) op.faces.insert(op.faces.end(), in.holes[h].faces.begin(), in.holes[h].faces.end());
+      op.path = drillingPath(list, *spot, true, setup, clearanceAbove(group), options.holes);
+      for (int h : group) op.faces.insert(op.faces.end(), holes[h].faces.begin(), holes[h].faces.end());
       op.note = "spot drilling";
       if (!op.path.empty()) addOperation(setup, std::move(op));
     }
-    for (const auto& [key, holes] : drilled) {
+    for (const auto& [key, group] : drilled) {
       const auto& [setup, id] = key;
       const bool helix = id.rfind("helix:", 0) == 0;
       const Tool* tool = in.library.find(helix ? id.substr(6) : id);
@@ -290,22 +307,22 @@ FinishingPlan planFinishing(const FinishingInput& in, const FinishingOptions& op
       op.setup = setup;
       op.kind = helix ? FinishingKind::Helix : FinishingKind::Drill;
       op.tool = tool->id;
-      op.direction = in.holes[holes.front()].axis;
-      for (int h : holes) {
-        op.faces.insert(op.faces.end(), in.holes[h].faces.begin(), in.holes[h].faces.end());
+      op.direction = holes[group.front()].axis;
+      for (int h : group) {
+        op.faces.insert(op.faces.end(), holes[h].faces.begin(), holes[h].faces.end());
         if (helix) {
-          const Toolpath p = helixPath(in.holes[h], *tool, setup, clearance_above, options.holes);
+          const Toolpath p = helixPath(holes[h], *tool, setup, clearanceAbove(group), options.holes);
           op.path.insert(op.path.end(), p.begin(), p.end());
         }
       }
       if (!helix) {
         std::vector<Hole> list;
-        for (int h : holes) list.push_back(in.holes[h]);
-        op.path = drillingPath(list, *tool, false, setup, clearance_above, options.holes);
+        for (int h : group) list.push_back(holes[h]);
+        op.path = drillingPath(list, *tool, false, setup, clearanceAbove(group), options.holes);
       }
       if (op.path.empty()) continue;
-      for (int h : holes)
-        for (int f : in.holes[h].faces) size[f] = reached[f] = part.faces[f].area;
+      for (int h : group)
+        for (int f : holes[h].faces) size[f] = reached[f] = part.faces[f].area;
       addOperation(setup, std::move(op));
     }
   }

@@ -1,5 +1,8 @@
 #include "art2part/geometry/face.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace art2part {
 
 const char* surfaceTypeName(SurfaceType type) {
@@ -40,6 +43,52 @@ void updateFaceAreas(const Mesh& mesh, const std::vector<int>& triangle_face, st
     faces[f].area += triangleArea(mesh, t);
     ++faces[f].triangle_count;
   }
+}
+
+namespace {
+
+// How far p lies inside the true concave surface (towards the space it bounds), or 0.
+double inward(const Face& f, const Vec3& p) {
+  switch (f.type) {
+    case SurfaceType::Cylinder: {
+      const Vec3 a = f.axis.normalized();
+      const Vec3 d = p - f.point;
+      return f.radius - (d - d.dot(a) * a).norm();
+    }
+    case SurfaceType::Sphere:
+      return f.radius - (p - f.point).norm();
+    case SurfaceType::Torus: {
+      const Vec3 a = f.axis.normalized();
+      const Vec3 d = p - f.point;
+      const Vec3 radial = d - d.dot(a) * a;
+      if (radial.norm() < 1e-12) return 0;
+      const Vec3 tube = f.point + radial.normalized() * f.radius;  // the tube's centre circle, nearest p
+      return f.minor_radius - (p - tube).norm();
+    }
+    case SurfaceType::Cone: {
+      // Distance from the cone's surface, positive inside (towards its axis).
+      const Vec3 a = f.axis.normalized();
+      const Vec3 d = p - f.point;
+      const double h = d.dot(a), r = (d - h * a).norm();
+      return (h * std::tan(f.half_angle) - r) * std::cos(f.half_angle);
+    }
+    default:
+      return 0;
+  }
+}
+
+}  // namespace
+
+std::vector<double> concaveSag(const Mesh& mesh, const std::vector<int>& triangle_face, const std::vector<Face>& faces) {
+  std::vector<double> sag(faces.size(), 0.0);
+  for (int t = 0; t < mesh.triangleCount() && t < static_cast<int>(triangle_face.size()); ++t) {
+    const int f = triangle_face[t];
+    if (f < 0 || f >= static_cast<int>(faces.size()) || !faces[f].concave) continue;
+    const Vec3 &a = mesh.corner(t, 0), &b = mesh.corner(t, 1), &c = mesh.corner(t, 2);
+    for (const Vec3& p : {Vec3((a + b + c) / 3), Vec3((a + b) / 2), Vec3((b + c) / 2), Vec3((c + a) / 2)})
+      sag[f] = std::max(sag[f], inward(faces[f], p));
+  }
+  return sag;
 }
 
 }  // namespace art2part

@@ -43,7 +43,7 @@ nlohmann::json operationJson(const PlanResult& plan, const PlanOperation& op) {
 nlohmann::json holeJson(const Hole& hole, const HoleMachining& method) {
   nlohmann::json segments = nlohmann::json::array();
   for (const HoleSegment& s : hole.segments)
-    segments.push_back({{"kind", holeSegmentKindName(s.kind)}, {"face", s.face}, {"from", s.from}, {"to", s.to},
+    segments.push_back({{"kind", holeSegmentKindName(s.kind)}, {"faces", s.faces}, {"from", s.from}, {"to", s.to},
                         {"diameter_from", s.diameter_from}, {"diameter_to", s.diameter_to}});
   return {{"axis", vec(hole.axis)},
           {"mouth", vec(hole.mouth)},
@@ -56,6 +56,7 @@ nlohmann::json holeJson(const Hole& hole, const HoleMachining& method) {
           {"countersink", {{"angle_deg", hole.countersink_angle_deg}, {"diameter", hole.countersink_diameter}}},
           {"signature", hole.signature},
           {"faces", hole.faces},
+          {"tip_depth", method.tip_depth},
           {"segments", segments},
           {"method", holeMethodName(method.method)},
           {"tool", method.drill},

@@ -61,6 +61,19 @@ void combine(PlanResult& r) {
 
 }  // namespace
 
+std::vector<double> faceAllowances(const Part& part, const FinishingPlan& finishing, const ToolLibrary& library) {
+  std::vector<double> allowance = concaveSag(part.mesh, part.triangle_face, part.faces);
+  for (std::size_t h = 0; h < finishing.holes.size() && h < finishing.hole_methods.size(); ++h) {
+    const HoleMachining& m = finishing.hole_methods[h];
+    const Tool* tool = m.method == HoleMethod::Drill ? library.find(m.drill) : nullptr;
+    if (!tool) continue;
+    const double over = std::max(0.0, (tool->diameter - finishing.holes[h].diameter) / 2);
+    for (int f : finishing.holes[h].bore_faces)
+      if (f >= 0 && f < static_cast<int>(allowance.size())) allowance[f] += over;
+  }
+  return allowance;
+}
+
 double planVerifyResolution(const Box& box) { return std::max({0.4, automaticResolution(box), box.diagonal() / 300}); }
 
 Part pluggedPart(const Part& part, const std::vector<Hole>& holes, const std::vector<HoleMachining>& methods) {
@@ -142,6 +155,7 @@ PlanResult planPart(const Part& part, const ToolLibrary& library, const PlanOpti
     stage("verification", 0, "simulating " + std::to_string(r.toolpath.size()) + " moves");
     VerifyOptions verify = options.verification;
     if (verify.resolution <= 0) verify.resolution = planVerifyResolution(boundingBox(part.mesh));
+    if (verify.face_allowance.empty()) verify.face_allowance = faceAllowances(part, r.finishing, library);
     r.verification = verifyToolpath(part.mesh, part.triangle_face, r.toolpath, r.tools, verify, &r.simulation);
     r.verified = true;
     timed("verification", start);

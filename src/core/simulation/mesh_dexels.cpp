@@ -39,8 +39,14 @@ void rasterise(const Mesh& mesh, int t, const DexelLattice& lattice, int axis, s
   const double area = (b[u] - a[u]) * (c[v] - a[v]) - (b[v] - a[v]) * (c[u] - a[u]);  // = n[axis]
   if (area == 0.0) return;
   const int orientation = area > 0.0 ? 1 : -1;
-  const auto us = lattice.indexRange(u, std::min({a[u], b[u], c[u]}), std::max({a[u], b[u], c[u]}));
-  const auto vs = lattice.indexRange(v, std::min({a[v], b[v], c[v]}), std::max({a[v], b[v], c[v]}));
+  // The rays within the triangle's box, one more each way: the index range is rounded division, the inside test exact
+  // comparison, and a ray whose coordinate equals a vertex's could fall out of the range of both triangles sharing an
+  // edge through it (featuretype at 0.1 mm: x-rays through hole seams missed both walls, 4,853 phantom gouges).
+  const auto widen = [&](std::array<int, 2> r, int along) {
+    return std::array<int, 2>{std::max(r[0] - 1, 0), std::min(r[1] + 1, lattice.cells[along] - 1)};
+  };
+  const auto us = widen(lattice.indexRange(u, std::min({a[u], b[u], c[u]}), std::max({a[u], b[u], c[u]})), u);
+  const auto vs = widen(lattice.indexRange(v, std::min({a[v], b[v], c[v]}), std::max({a[v], b[v], c[v]})), v);
   const Vec3* corners[3] = {&a, &b, &c};
   for (int iv = vs[0]; iv <= vs[1]; ++iv) {
     const double xv = lattice.coordinate(v, iv);

@@ -36,11 +36,28 @@ std::map<std::string, ToolSolid> toolSolids(const std::vector<Tool>& tools, doub
   return solids;
 }
 
+// The face under a gouge's deepest point (the nearest triangle's), -1 when none.
+int gougeFace(const MoveFinding& f, const std::vector<int>& triangle_face, const PartDistance& distance) {
+  int triangle = -1;
+  distance.distance(f.gouge_point, &triangle);
+  return triangle >= 0 && triangle < static_cast<int>(triangle_face.size()) ? triangle_face[triangle] : -1;
+}
+
+// A move's gouge counts when deeper than the tolerance and the allowance of the face under it.
+bool countsAsGouge(const MoveFinding& f, double tolerance, const std::vector<double>& allowance,
+                   const std::vector<int>& triangle_face, const PartDistance& distance) {
+  if (!(f.gouge_mm > tolerance)) return false;
+  if (allowance.empty()) return true;
+  const int face = gougeFace(f, triangle_face, distance);
+  return face < 0 || face >= static_cast<int>(allowance.size()) || f.gouge_mm > tolerance + allowance[face];
+}
+
 void listFindings(VerificationReport& r, const std::map<int, MoveFinding>& findings, const Toolpath& path,
-                  double tolerance, int max_listed) {
+                  double tolerance, const std::vector<double>& allowance, const std::vector<int>& triangle_face,
+                  const PartDistance& distance, int max_listed) {
   for (const auto& [point, f] : findings) {
     const CutterLocation& row = path[point];
-    if (f.gouge_mm > tolerance) {
+    if (countsAsGouge(f, tolerance, allowance, triangle_face, distance)) {
       ++r.gouges;
       r.worst_gouge_mm = std::max(r.worst_gouge_mm, f.gouge_mm);
       r.gouge_list.push_back({point, row.op, row.setup, row.tool, f.gouge_mm, f.gouge_point, f.gouge_tip});
@@ -61,7 +78,7 @@ void listFindings(VerificationReport& r, const std::map<int, MoveFinding>& findi
 // Per face: the leftover's cusps, and each counted gouge at the face of the triangle nearest its deepest point.
 std::vector<FaceVerification> checkFaces(const LeftoverAnalysis& leftover, const std::map<int, MoveFinding>& findings,
                                          const std::vector<int>& triangle_face, const PartDistance& distance,
-                                         double tolerance) {
+                                         double tolerance, const std::vector<double>& allowance) {
   int faces = 0;
   for (int f : triangle_face) faces = std::max(faces, f + 1);
   std::vector<FaceVerification> checks(faces);
@@ -73,10 +90,8 @@ std::vector<FaceVerification> checkFaces(const LeftoverAnalysis& leftover, const
     checks[cusp.face].samples = cusp.samples;
   }
   for (const auto& [point, f] : findings) {
-    if (!(f.gouge_mm > tolerance)) continue;
-    int triangle = -1;
-    distance.distance(f.gouge_point, &triangle);
-    const int face = triangle >= 0 && triangle < static_cast<int>(triangle_face.size()) ? triangle_face[triangle] : -1;
+    if (!countsAsGouge(f, tolerance, allowance, triangle_face, distance)) continue;
+    const int face = gougeFace(f, triangle_face, distance);
     if (face < 0 || face >= faces) continue;
     FaceVerification& check = checks[face];
     ++check.gouges;
@@ -150,13 +165,15 @@ VerificationReport verifyToolpath(const Mesh& part_mesh, const std::vector<int>&
   r.poses = sweep.poses;
   r.seconds_sweep = sweep.seconds;
   r.moves_per_second = r.moves / std::max(sweep.seconds, 1e-9);
-  listFindings(r, sweep.findings, path, options.tolerance, options.max_listed);
+  listFindings(r, sweep.findings, path, options.tolerance, options.face_allowance, triangle_face, distance,
+               options.max_listed);
 
   r.remaining_volume_mm3 = stock.volume();
   r.removed_volume_mm3 = r.stock_volume_mm3 - r.remaining_volume_mm3;
   LeftoverAnalysis leftover = analyseLeftover(stock, part_dexels, part_box, triangle_face);
   if (!part_faces.empty())
-    r.face_checks = checkFaces(leftover, sweep.findings, triangle_face, distance, options.tolerance);
+    r.face_checks = checkFaces(leftover, sweep.findings, triangle_face, distance, options.tolerance,
+                               options.face_allowance);
   listLeftover(r, std::move(leftover), options.max_listed);
   if (state) {
     state->stock = std::move(stock);
