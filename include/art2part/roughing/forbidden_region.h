@@ -40,7 +40,8 @@ class ForbiddenRegion {
   // `shadows` must hold every level's height (a zone's bottom takes the shadow at the stored height at or below it:
   // conservative); it must outlive this. With `stock_left`, body zones keep clear of the stock left above, which holds
   // the part's sections (a level never clears its own shadow), and so of the part; without, of the part alone (a
-  // quick comparison of tools, with no levels done).
+  // quick comparison of tools, with no levels done). A negative cutter_radius leaves the cutter out (its caller
+  // offsets the shadow itself).
   ForbiddenRegion(const ShadowStack& shadows, double cutter_radius, const std::vector<BodyZone>& zones,
                   double holder_margin, bool stock_left);
   // The region at level z. Levels come highest first; `left_above` lists the slabs of the levels already done,

@@ -39,6 +39,10 @@ Region simplifyRegion(const Region& region, double tolerance);
 Region dropThinPieces(const Region& region, double half_width);
 // Drops rings whose area is below `min_area_mm2` (slivers left by offsets), with their holes.
 Region dropSlivers(const Region& region, double min_area_mm2);
+// Fills the holes whose area is below `max_area_mm2`: a hole smaller than a disc of radius r cannot hold one, so a
+// region grown by r is the same with them filled (and far cheaper to grow: a shadow seen along a wall has thousands).
+// The region must be well-formed (Clipper's output: holes clockwise).
+Region fillSmallHoles(const Region& region, double max_area_mm2);
 
 double regionArea(const Region& region);  // mm^2, holes subtracted
 // Boolean operations Clipper reported as failed since the program started (their results are unreliable): a

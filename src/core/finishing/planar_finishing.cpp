@@ -6,18 +6,23 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 
 #include "art2part/roughing/clearing_paths.h"
 #include "art2part/roughing/forbidden_region.h"
 #include "art2part/roughing/shadow.h"
+#include "finishing_moves.h"
 #include "point_grid.h"
 
 namespace art2part {
 
 namespace {
 
+using namespace finishing_detail;
+
 // A level's shadow is taken this far above it, so a floor lying at the level is not its own shadow (the tool's flat
 // bottom may touch it); a gouge of at most this much could go unnoticed by the planner (the simulation sees it).
+constexpr double kPi = 3.14159265358979323846;
 constexpr double kAbove = 1e-3;
 constexpr double kTraceSpacing = 0.5;      // mm between the samples of a wall's trace
 // mm: a wall sample within the cutter's radius plus this of a pass is reached (the ring lies within the offsets' arc
@@ -26,8 +31,12 @@ constexpr double kReachSlack = 0.01;
 constexpr double kCoveredShrink = 0.002;   // mm the swept discs are taken smaller by, for the floor left to rest tools
 constexpr double kThinLeft = 0.01;         // mm: strips of a floor left thinner than twice this are no rest work
 constexpr double kSliver = 0.01;           // mm^2: a tool reaching less than this is no rest tool
-constexpr double kSafeHeight = 1.0;        // mm above the allowance where a descent changes from rapid to feed
 constexpr double kLevelMerge = 0.01;       // mm: levels closer than this are one
+constexpr double kZoneGrid = 1.0;          // mm: shank and holder bottoms' shadows on this grid (rounded down)
+constexpr std::size_t kTrialLevels = 8;
+constexpr double kTrialArc = 0.02;         // mm: a trial's cutter offsets (it compares tools; the paths use kFinishArc)     // levels a tool's trial works (spread over its levels)
+constexpr double kWindowMargin = 3.0;      // mm round a level's work where the exact cutter region is computed
+constexpr double kSkinSlack = 0.05;        // mm beyond the allowance that still counts as skin, not stock left
 constexpr double kFinishArc = 0.002;       // mm: chords of the cutter's offset arcs (inside them: a gouge of at most this)
 
 struct Floor {
@@ -70,6 +79,10 @@ struct Wall {
 // Everything about the group that does not depend on the tool.
 struct GroupGeometry {
   std::vector<Vec3> vertices;  // the part in the frame
+  // What roughing left beyond its allowance (the slabs of PlanarGroup::stock_left eroded by the allowance and a
+  // margin: stairs on slanted faces, corners no roughing tool reached), slabs top down; and pointers to them as the
+  // forbidden region takes them. The skin of the allowance itself is kept off by the holder margin.
+  std::shared_ptr<const std::vector<SlabState>> thick;  // shared by the copies a tool's trial makes
   Box stock;                   // the stock's box in the frame
   std::vector<Floor> floors;
   std::vector<Wall> walls;
@@ -100,9 +113,15 @@ std::vector<Point2> traceSamples(const std::vector<Vec3>& vertices, const Mesh& 
   return samples;
 }
 
-GroupGeometry groupGeometry(const Part& part, const PlanarGroup& group) {
+GroupGeometry groupGeometry(const Part& part, const PlanarGroup& group, double allowance) {
   GroupGeometry g;
   g.vertices = toFrame(part.mesh.vertices, group.frame);
+  auto thick = std::make_shared<std::vector<SlabState>>();
+  for (const SlabState& slab : group.stock_left) {
+    Region left = dropThinPieces(offsetRegion(slab.remaining, -(allowance + kSkinSlack)), kThinLeft);
+    if (!regionEmpty(left)) thick->push_back({slab.z, slab.top, std::move(left)});
+  }
+  g.thick = std::move(thick);
   for (const Vec3& p : toFrame(group.stock.vertices, group.frame)) g.stock.extend(p);
   for (int t = 0; t < part.mesh.triangleCount() && t < static_cast<int>(part.triangle_face.size()); ++t)
     g.triangles_of[part.triangle_face[t]].push_back(t);
@@ -181,154 +200,22 @@ std::vector<BodyZone> finishingZones(const Tool& tool, double allowance) {
   return zones;
 }
 
-class PathWriter {
- public:
-  PathWriter(const SetupFrame& frame, const Tool& tool, int setup, double clearance_z)
-      : frame_(frame), tool_(tool), setup_(setup), clearance_z_(clearance_z) {}
-
-  void move(const Vec3& p, MoveKind kind) {
-    CutterLocation cl;
-    cl.setup = setup_;
-    cl.tool = tool_.id;
-    cl.move = kind;
-    cl.tip = fromFrame(p, frame_);
-    cl.axis = frame_.z;
-    if (!path_.empty() && (path_.back().tip - cl.tip).norm() < 1e-9) return;
-    path_.push_back(cl);
-    at_ = p;
-    started_ = true;
+// Where a level works: its floors' part left, and the box of each wall's samples still open at the level's band,
+// grown by `grow`. Exact offsets are taken only there.
+Region workWindow(const GroupGeometry& g, const LevelWork& level, double grow) {
+  Region window;
+  for (int f : level.floors) window = unite(window, g.floors[f].left);
+  std::vector<Ring> boxes;
+  for (const auto& [w, band_top] : level.walls) {
+    const Wall& wall = g.walls[w];
+    Point2 lo(1e300, 1e300), hi(-1e300, -1e300);
+    for (std::size_t s = 0; s < wall.samples.size(); ++s)
+      if (!wall.bandDone(s, level.z, band_top)) lo = lo.cwiseMin(wall.samples[s]), hi = hi.cwiseMax(wall.samples[s]);
+    if (lo.x() > hi.x()) continue;
+    lo -= Point2(0.5, 0.5), hi += Point2(0.5, 0.5);  // a wall along an axis has a flat box
+    boxes.push_back({lo, Point2(hi.x(), lo.y()), hi, Point2(lo.x(), hi.y())});
   }
-  void clearing(const std::vector<ClearingPoint>& moves) {
-    for (const ClearingPoint& m : moves) move(m.tip, m.move == ClearingMove::Rapid ? MoveKind::Rapid : MoveKind::Feed);
-  }
-  // To (x, y) at height z from wherever the tool is: up to the clearance plane, across, down fast to `safe` (or only
-  // to `floor` when that is higher), then feed.
-  void enter(const Point2& xy, double z, double safe, double floor) {
-    if (started_ && at_.z() < clearance_z_ - 1e-9) move(Vec3(at_.x(), at_.y(), clearance_z_), MoveKind::Rapid);
-    move(Vec3(xy.x(), xy.y(), clearance_z_), MoveKind::Rapid);
-    const double fast = std::max(safe, floor);
-    if (fast < clearance_z_) move(Vec3(xy.x(), xy.y(), fast), MoveKind::Rapid);
-    move(Vec3(xy.x(), xy.y(), z), MoveKind::Feed);
-  }
-  void retract() {
-    if (started_ && at_.z() < clearance_z_ - 1e-9) move(Vec3(at_.x(), at_.y(), clearance_z_), MoveKind::Rapid);
-  }
-  Toolpath take() {
-    retract();
-    return std::move(path_);
-  }
-  const Vec3& at() const { return at_; }
-
- private:
-  SetupFrame frame_;
-  const Tool& tool_;
-  int setup_;
-  double clearance_z_;
-  Toolpath path_;
-  Vec3 at_ = Vec3::Zero();
-  bool started_ = false;
-};
-
-// Where the tool may come straight down at rapid: its disc clear of the allowance roughing left on every face above
-// the level (the allowed region eroded by that and a margin). A descent elsewhere moves to the nearest such point
-// within reach, comes down there and feeds across at the height it came down to; failing that it feeds all the way.
-class SafeDescent {
- public:
-  SafeDescent(const Region& allowed, double allowance)
-      : allowed_(allowed), safe_(offsetRegion(allowed, -(allowance + kDescentMargin))), locator_(safe_) {}
-
-  // The point to come down at for a descent at `p`, and whether there is one (else feed down at p).
-  bool at(const Point2& p, double max_shift, Point2& out) const {
-    if (locator_.contains(p)) return out = p, true;
-    double best = max_shift * max_shift;
-    bool found = false;
-    for (const ClipperLib::Path& ring : safe_)
-      for (std::size_t i = 0; i < ring.size(); ++i) {
-        const Point2 a = fromRegionPoint(ring[i]), b = fromRegionPoint(ring[(i + 1) % ring.size()]);
-        const Point2 ab = b - a;
-        const double t = ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
-        const Point2 q = a + t * ab;
-        const double d = (q - p).squaredNorm();
-        if (d >= best) continue;
-        // A hair inside the safe region, and a straight way from there to p in the allowed region.
-        const Point2 inside = q + (q - p).normalized() * 0.01;
-        if (!locator_.contains(inside) || !segmentInside(allowed_, inside, p)) continue;
-        best = d, out = inside, found = true;
-      }
-    return found;
-  }
-
- private:
-  static constexpr double kDescentMargin = 0.2;
-  const Region& allowed_;
-  Region safe_;
-  RegionLocator locator_;
-};
-
-// How far down a rapid may come at a point: to the top of the highest slab of stock roughing left whose material
-// lies within the tool's radius (and a margin) of the point; below that the tool feeds. The part and its allowance
-// are kept off by SafeDescent; what this sees is stock roughing could not reach.
-class DescentLimit {
- public:
-  DescentLimit(const std::vector<SlabState>& slabs, double radius) : slabs_(slabs), reach_(radius + kMargin) {}
-  // The lowest height a rapid may reach at p (-infinity: all the way).
-  double at(const Point2& p) const {
-    const Point2 lo = p - Point2(reach_, reach_), hi = p + Point2(reach_, reach_);
-    for (const SlabState& slab : slabs_) {  // top down
-      const Region near = ringsMeeting(slab.remaining, lo, hi);
-      if (near.empty()) continue;
-      if (regionContains(near, p) || distanceToRings(near, p) <= reach_) return slab.top + kSafeHeight;
-    }
-    return -std::numeric_limits<double>::infinity();
-  }
-
- private:
-  static constexpr double kMargin = 0.5;
-  static double distanceToRings(const Region& region, const Point2& p) {
-    double best = std::numeric_limits<double>::infinity();
-    for (const ClipperLib::Path& ring : region)
-      for (std::size_t i = 0; i < ring.size(); ++i) {
-        const Point2 a = fromRegionPoint(ring[i]), b = fromRegionPoint(ring[(i + 1) % ring.size()]);
-        const Point2 ab = b - a;
-        const double t = ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
-        best = std::min(best, (a + t * ab - p).norm());
-      }
-    return best;
-  }
-  const std::vector<SlabState>& slabs_;
-  double reach_;
-};
-
-// Rapid descents (below the clearance plane) moved to where the tool comes down clear of the allowance, joined to the
-// descent's foot by a feed; where there is none nearby, the descent is a feed.
-std::vector<ClearingPoint> safeDescents(const std::vector<ClearingPoint>& moves, const SafeDescent& safe,
-                                        const DescentLimit& limit, double max_shift) {
-  std::vector<ClearingPoint> out;
-  out.reserve(moves.size());
-  for (std::size_t i = 0; i < moves.size(); ++i) {
-    const ClearingPoint& m = moves[i];
-    const bool descent = m.move == ClearingMove::Rapid && !out.empty() && m.tip.z() < out.back().tip.z() - 1e-9 &&
-                         (m.tip.head<2>() - out.back().tip.head<2>()).norm() < 1e-6;
-    if (!descent) {
-      out.push_back(m);
-      continue;
-    }
-    Point2 at;
-    if (safe.at(m.tip.head<2>(), max_shift, at)) {
-      const double floor = limit.at(at);
-      out.back().tip.head<2>() = at;  // the rapid across ends over the safe point
-      if (floor < m.tip.z()) {
-        out.push_back({Vec3(at.x(), at.y(), m.tip.z()), ClearingMove::Rapid});
-      } else {
-        if (floor < out.back().tip.z()) out.push_back({Vec3(at.x(), at.y(), floor), ClearingMove::Rapid});
-        out.push_back({Vec3(at.x(), at.y(), m.tip.z()), ClearingMove::Feed});
-      }
-      if ((at - m.tip.head<2>()).norm() > 1e-6) out.push_back({m.tip, ClearingMove::Feed});
-    } else {
-      out.push_back({m.tip, ClearingMove::Feed});
-    }
-  }
-  return out;
+  return offsetRegion(unite(window, regionFromPolygons(boxes)), grow, kArcTolerance);
 }
 
 // The passes of one tool over what is left of the group.
@@ -340,50 +227,28 @@ struct ToolRun {
   double reached_total = 0;
 };
 
-// Cuts one stretch of ring at height z: entered from the open side (the region lies right of a climb stretch) where
-// the straight lead-in stays in the region, else straight down at its first point.
-void cutStretch(const ContourStretch& s, double z, double top, double lead, const Region& allowed,
-                const SafeDescent& safe, const DescentLimit& limit, PathWriter& out) {
-  const Point2& p0 = s.points.front();
-  const Point2 t = (s.points[1] - p0).normalized();
-  Point2 start = p0 + Point2(t.y(), -t.x()) * lead;
-  if (!segmentInside(allowed, start, p0)) start = p0;
-  Point2 down;
-  if (safe.at(start, 2 * lead, down)) {
-    out.enter(down, top + kSafeHeight, top + kSafeHeight, limit.at(down));
-    out.move(Vec3(start.x(), start.y(), top + kSafeHeight), MoveKind::Feed);
-    out.move(Vec3(start.x(), start.y(), z), MoveKind::Feed);
-  } else {
-    out.enter(start, z, top + kSafeHeight, std::numeric_limits<double>::infinity());  // feed all the way down
-  }
-  for (const Point2& p : s.points) out.move(Vec3(p.x(), p.y(), z), MoveKind::Feed);
-  if (s.closed) out.move(Vec3(p0.x(), p0.y(), z), MoveKind::Feed);
-  // Lead out the way it came in, off the wall.
-  const Point2& pn = s.closed ? p0 : s.points.back();
-  const Point2& pp = s.closed ? s.points.back() : s.points[s.points.size() - 2];
-  const Point2 u = (pn - pp).normalized();
-  const Point2 off = pn + Point2(u.y(), -u.x()) * lead;
-  if (segmentInside(allowed, pn, off)) out.move(Vec3(off.x(), off.y(), z), MoveKind::Feed);
-  out.retract();
-}
-
-ToolRun runTool(const Part& part, const PlanarGroup& group, GroupGeometry& g, const Tool& tool,
-                const FinishingOptions& options, bool write_paths) {
+// With `sample`, a trial works at most kTrialLevels of the levels, spread from the top down: enough to compare tools
+// for a whole group (as roughing's choice samples its levels), a fraction of the cost.
+ToolRun runTool(const PlanarGroup& group, GroupGeometry& g, const ShadowStack& shadows, const Tool& tool,
+                const FinishingOptions& options, bool write_paths, bool sample = false) {
   ToolRun run;
-  const std::vector<LevelWork> levels = levelsFor(g, tool, options.planar);
+  std::vector<LevelWork> levels = levelsFor(g, tool, options.planar);
+  if (sample && levels.size() > kTrialLevels) {
+    std::vector<LevelWork> sample;
+    for (std::size_t i = 0; i < kTrialLevels; ++i) sample.push_back(levels[i * (levels.size() - 1) / (kTrialLevels - 1)]);
+    levels = std::move(sample);
+  }
   if (levels.empty()) return run;
   const double r = tool.diameter / 2;
   const std::vector<BodyZone> zones = finishingZones(tool, options.allowance);
-  std::vector<double> heights;
-  for (const LevelWork& l : levels) {
-    heights.push_back(l.z + kAbove);
-    for (const BodyZone& zone : zones) heights.push_back(l.z + kAbove + zone.from);
-  }
-  const ShadowStack shadows(g.vertices, part.mesh.triangles, heights);
+
   // Shank and holder by roughing's grown region (conservative: simplified, coarse chords); the cutter by the exact
   // offset of the level's shadow, so the tool touches the finished face (chords of kFinishArc inside the true arcs:
   // at most that much closer).
-  ForbiddenRegion body(shadows, 0.0, zones, options.tools.holder_margin, false);
+  ForbiddenRegion body(shadows, -1, zones, options.tools.holder_margin, false);
+  ForbiddenRegion body_stock(shadows, -1, zones, options.tools.holder_margin, true);  // against g.thick
+  std::vector<StockLeft> thick_left;
+  for (const SlabState& slab : *g.thick) thick_left.push_back({slab.top, &slab.remaining});
   Box outline = g.stock;
   const Region universe = regionFromPolygons({{Point2(outline.min.x() - r - 1, outline.min.y() - r - 1),
                                                Point2(outline.max.x() + r + 1, outline.min.y() - r - 1),
@@ -397,12 +262,19 @@ ToolRun runTool(const Part& part, const PlanarGroup& group, GroupGeometry& g, co
   clearing.safe_height = kSafeHeight;
   clearing.contour_pass = true;
   const double lead = std::min(r, 2.0) + options.allowance;
-  const DescentLimit limit(group.stock_left, r);
+  const DescentLimit limit(*g.thick, r);
 
   for (const LevelWork& level : levels) {
     const double zq = level.z + kAbove;
-    const Region cutter = offsetRegion(shadows.at(zq), r, kFinishArc);
-    Region allowed = dropSlivers(subtract(subtract(universe, cutter), body.at(zq, {})), 1e-4);
+    // The cutter's region only where this level works (its floors and walls, grown by the radius and a margin): the
+    // exact offset of the whole shadow at every level was most of finishing's time on big parts.
+    const Region window = intersect(universe, workWindow(g, level, r + kWindowMargin));
+    const Region near_shadow = intersect(shadows.at(zq), offsetRegion(window, r + kWindowMargin, kArcTolerance));
+    // Holes of the shadow too small for the cutter's disc change nothing once it is grown by the radius.
+    const Region cutter =
+        offsetRegion(fillSmallHoles(near_shadow, kPi * r * r), r, write_paths ? kFinishArc : kTrialArc);
+    Region allowed = dropSlivers(subtract(subtract(window, cutter), body.at(zq, {})), 1e-4);
+    if (!thick_left.empty()) allowed = dropSlivers(subtract(allowed, body_stock.at(zq, thick_left)), 1e-4);
     if (regionEmpty(allowed)) continue;
 
     if (!level.floors.empty()) {
@@ -519,7 +391,25 @@ std::vector<int> facesOf(const PlanarGroup& group, std::vector<int> targets) {
 // area_fraction of what the most capable candidate reaches (the smallest, or the one with the longest flutes: a narrow
 // corner wants the one, a deep wall the other). The first tool may be any; after it, tools at most half the previous
 // diameter, or as wide with longer flutes (a deep wall the previous one's shank kept it from).
-const Tool* nextTool(const Part& part, const PlanarGroup& group, const GroupGeometry& g,
+// One stack of shadows for every tool of a group: each level's height (just above it) exactly, and the bottoms of
+// the tools' shanks and holders over it rounded down to a kZoneGrid grid (a lower height's shadow holds more: the
+// zones stay clear, a shank reaching at most that much less deep). Levels depend on a wall and a tool alone, so the
+// heights hold for every round of rest tools.
+ShadowStack groupShadows(const Part& part, const GroupGeometry& g, const std::vector<const Tool*>& tools,
+                         const FinishingOptions& options) {
+  std::vector<double> heights;
+  for (const Tool* t : tools)
+    for (const LevelWork& l : levelsFor(g, *t, options.planar)) {
+      heights.push_back(l.z + kAbove);
+      for (const BodyZone& zone : finishingZones(*t, options.allowance))
+        heights.push_back(std::floor((l.z + kAbove + zone.from) / kZoneGrid) * kZoneGrid);
+    }
+  std::sort(heights.begin(), heights.end());
+  heights.erase(std::unique(heights.begin(), heights.end()), heights.end());
+  return ShadowStack(g.vertices, part.mesh.triangles, heights);
+}
+
+const Tool* nextTool(const ShadowStack& shadows, const PlanarGroup& group, const GroupGeometry& g,
                      const std::vector<const Tool*>& tools, const Tool* previous, const std::vector<const Tool*>& used,
                      const FinishingOptions& options) {
   std::vector<const Tool*> candidates;
@@ -535,18 +425,25 @@ const Tool* nextTool(const Part& part, const PlanarGroup& group, const GroupGeom
     if (a->diameter != b->diameter) return a->diameter > b->diameter;
     return a->flute_length < b->flute_length;
   });
+  // Tools are compared on a sample of the levels; when the sample shows nothing the two most capable reach, on all.
+  bool sample = true;
   std::map<const Tool*, double> reach;
   auto evaluate = [&](const Tool* t) {
     const auto it = reach.find(t);
     if (it != reach.end()) return it->second;
     GroupGeometry trial = g;
-    return reach[t] = runTool(part, group, trial, *t, options, false).reached_total;
+    return reach[t] = runTool(group, trial, shadows, *t, options, false, sample).reached_total;
   };
   const Tool* smallest = candidates.back();
   const Tool* longest = *std::max_element(candidates.begin(), candidates.end(), [](const Tool* a, const Tool* b) {
     return a->flute_length < b->flute_length || (a->flute_length == b->flute_length && a->diameter > b->diameter);
   });
-  const double best = std::max(evaluate(smallest), evaluate(longest));
+  double best = std::max(evaluate(smallest), evaluate(longest));
+  if (best <= kSliver) {
+    sample = false;
+    reach.clear();
+    best = std::max(evaluate(smallest), evaluate(longest));
+  }
   if (best <= kSliver) return nullptr;
   for (const Tool* t : candidates)
     if (evaluate(t) >= options.tools.area_fraction * best) return t;
@@ -562,7 +459,7 @@ PlanarResult finishPlanar(const Part& part, const PlanarGroup& group, const std:
     if (t->type != ToolType::Flat)
       throw InputError("planar finishing: tool '" + t->id + "' is a " + toolTypeName(t->type) + ", not a flat end mill");
   PlanarResult result;
-  const GroupGeometry base = groupGeometry(part, group);
+  const GroupGeometry base = groupGeometry(part, group, options.allowance);
   result.reach.resize(group.targets.size());
   for (int i = 0; i < static_cast<int>(group.targets.size()); ++i) result.reach[i].face = group.targets[i].face;
   for (const Floor& f : base.floors) result.reach[f.target].size = regionArea(f.left);
@@ -575,15 +472,16 @@ PlanarResult finishPlanar(const Part& part, const PlanarGroup& group, const std:
   if (base.floors.empty() && base.walls.empty()) return result;
 
   GroupGeometry g = base;
+  const ShadowStack shadows = groupShadows(part, base, tools, options);
   std::vector<const Tool*> used;
   const Tool* previous = nullptr;
   for (int pass = 0; pass <= options.tools.max_rest_tools && !nothingLeft(g); ++pass) {
-    const Tool* tool = nextTool(part, group, g, tools, previous, used, options);
+    const Tool* tool = nextTool(shadows, group, g, tools, previous, used, options);
     if (!tool) break;
     used.push_back(tool);
     previous = tool;
     const auto start = std::chrono::steady_clock::now();
-    ToolRun run = runTool(part, group, g, *tool, options, true);
+    ToolRun run = runTool(group, g, shadows, *tool, options, true);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     auto add = [&](Toolpath&& path, FinishingKind kind, const std::vector<int>& targets) {
       if (path.empty() || targets.empty()) return;

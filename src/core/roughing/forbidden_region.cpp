@@ -42,10 +42,12 @@ Region growForBody(const Region& region, double radius) {
 ForbiddenRegion::ForbiddenRegion(const ShadowStack& shadows, double cutter_radius, const std::vector<BodyZone>& zones,
                                  double holder_margin, bool stock_left)
     : shadows_(shadows) {
-  Layer cutter;
-  cutter.radius = cutter_radius;
-  cutter.tolerance = kArcTolerance;
-  layers_.push_back(cutter);
+  if (cutter_radius >= 0) {
+    Layer cutter;
+    cutter.radius = cutter_radius;
+    cutter.tolerance = kArcTolerance;
+    layers_.push_back(cutter);
+  }
   for (const BodyZone& zone : zones) {
     Layer layer;
     layer.from = zone.from;

@@ -292,6 +292,18 @@ Region dropSlivers(const Region& region, double min_area_mm2) {
   return out;
 }
 
+Region fillSmallHoles(const Region& region, double max_area_mm2) {
+  const double limit = max_area_mm2 * kRegionScale * kRegionScale;
+  Region out;
+  out.reserve(region.size());
+  for (const Path& path : region) {
+    const double area = ClipperLib::Area(path);
+    if (area < 0 && -area < limit) continue;
+    out.push_back(path);
+  }
+  return out;
+}
+
 double regionArea(const Region& region) {
   double area = 0;
   for (const Path& path : region) area += ClipperLib::Area(path);

@@ -1,0 +1,65 @@
+// Moves of the 2.5-D finishing passes (finishing_moves.h).
+#include "finishing_moves.h"
+
+namespace art2part::finishing_detail {
+
+// Rapid descents (below the clearance plane) moved to where the tool comes down clear of the allowance, joined to the
+// descent's foot by a feed; where there is none nearby, the descent is a feed.
+std::vector<ClearingPoint> safeDescents(const std::vector<ClearingPoint>& moves, const SafeDescent& safe,
+                                        const DescentLimit& limit, double max_shift) {
+  std::vector<ClearingPoint> out;
+  out.reserve(moves.size());
+  for (std::size_t i = 0; i < moves.size(); ++i) {
+    const ClearingPoint& m = moves[i];
+    const bool descent = m.move == ClearingMove::Rapid && !out.empty() && m.tip.z() < out.back().tip.z() - 1e-9 &&
+                         (m.tip.head<2>() - out.back().tip.head<2>()).norm() < 1e-6;
+    if (!descent) {
+      out.push_back(m);
+      continue;
+    }
+    Point2 at;
+    if (safe.at(m.tip.head<2>(), max_shift, at)) {
+      const double floor = limit.at(at);
+      out.back().tip.head<2>() = at;  // the rapid across ends over the safe point
+      if (floor < m.tip.z()) {
+        out.push_back({Vec3(at.x(), at.y(), m.tip.z()), ClearingMove::Rapid});
+      } else {
+        if (floor < out.back().tip.z()) out.push_back({Vec3(at.x(), at.y(), floor), ClearingMove::Rapid});
+        out.push_back({Vec3(at.x(), at.y(), m.tip.z()), ClearingMove::Feed});
+      }
+      if ((at - m.tip.head<2>()).norm() > 1e-6) out.push_back({m.tip, ClearingMove::Feed});
+    } else {
+      out.push_back({m.tip, ClearingMove::Feed});
+    }
+  }
+  return out;
+}
+
+// Cuts one stretch of ring at height z: entered from the open side (the region lies right of a climb stretch) where
+// the straight lead-in stays in the region, else straight down at its first point.
+void cutStretch(const ContourStretch& s, double z, double top, double lead, const Region& allowed,
+                const SafeDescent& safe, const DescentLimit& limit, PathWriter& out) {
+  const Point2& p0 = s.points.front();
+  const Point2 t = (s.points[1] - p0).normalized();
+  Point2 start = p0 + Point2(t.y(), -t.x()) * lead;
+  if (!segmentInside(allowed, start, p0)) start = p0;
+  Point2 down;
+  if (safe.at(start, 2 * lead, down)) {
+    out.enter(down, top + kSafeHeight, top + kSafeHeight, limit.at(down));
+    out.move(Vec3(start.x(), start.y(), top + kSafeHeight), MoveKind::Feed);
+    out.move(Vec3(start.x(), start.y(), z), MoveKind::Feed);
+  } else {
+    out.enter(start, z, top + kSafeHeight, std::numeric_limits<double>::infinity());  // feed all the way down
+  }
+  for (const Point2& p : s.points) out.move(Vec3(p.x(), p.y(), z), MoveKind::Feed);
+  if (s.closed) out.move(Vec3(p0.x(), p0.y(), z), MoveKind::Feed);
+  // Lead out the way it came in, off the wall.
+  const Point2& pn = s.closed ? p0 : s.points.back();
+  const Point2& pp = s.closed ? s.points.back() : s.points[s.points.size() - 2];
+  const Point2 u = (pn - pp).normalized();
+  const Point2 off = pn + Point2(u.y(), -u.x()) * lead;
+  if (segmentInside(allowed, pn, off)) out.move(Vec3(off.x(), off.y(), z), MoveKind::Feed);
+  out.retract();
+}
+
+}  // namespace art2part::finishing_detail

@@ -1,0 +1,146 @@
+// Moves of the 2.5-D finishing passes (planar_finishing.cpp's internal helpers, not part of the library's interface):
+// writing cutter locations in a frame, where a rapid may come down, and cutting one stretch of a wall.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "art2part/finishing/planar_finishing.h"
+#include "art2part/roughing/clearing_paths.h"
+#include "art2part/roughing/shadow.h"
+
+namespace art2part::finishing_detail {
+
+constexpr double kSafeHeight = 1.0;  // mm above the allowance where a descent changes from rapid to feed
+
+class PathWriter {
+ public:
+  PathWriter(const SetupFrame& frame, const Tool& tool, int setup, double clearance_z)
+      : frame_(frame), tool_(tool), setup_(setup), clearance_z_(clearance_z) {}
+
+  void move(const Vec3& p, MoveKind kind) {
+    CutterLocation cl;
+    cl.setup = setup_;
+    cl.tool = tool_.id;
+    cl.move = kind;
+    cl.tip = fromFrame(p, frame_);
+    cl.axis = frame_.z;
+    if (!path_.empty() && (path_.back().tip - cl.tip).norm() < 1e-9) return;
+    path_.push_back(cl);
+    at_ = p;
+    started_ = true;
+  }
+  void clearing(const std::vector<ClearingPoint>& moves) {
+    for (const ClearingPoint& m : moves) move(m.tip, m.move == ClearingMove::Rapid ? MoveKind::Rapid : MoveKind::Feed);
+  }
+  // To (x, y) at height z from wherever the tool is: up to the clearance plane, across, down fast to `safe` (or only
+  // to `floor` when that is higher), then feed.
+  void enter(const Point2& xy, double z, double safe, double floor) {
+    if (started_ && at_.z() < clearance_z_ - 1e-9) move(Vec3(at_.x(), at_.y(), clearance_z_), MoveKind::Rapid);
+    move(Vec3(xy.x(), xy.y(), clearance_z_), MoveKind::Rapid);
+    const double fast = std::max(safe, floor);
+    if (fast < clearance_z_) move(Vec3(xy.x(), xy.y(), fast), MoveKind::Rapid);
+    move(Vec3(xy.x(), xy.y(), z), MoveKind::Feed);
+  }
+  void retract() {
+    if (started_ && at_.z() < clearance_z_ - 1e-9) move(Vec3(at_.x(), at_.y(), clearance_z_), MoveKind::Rapid);
+  }
+  Toolpath take() {
+    retract();
+    return std::move(path_);
+  }
+  const Vec3& at() const { return at_; }
+
+ private:
+  SetupFrame frame_;
+  const Tool& tool_;
+  int setup_;
+  double clearance_z_;
+  Toolpath path_;
+  Vec3 at_ = Vec3::Zero();
+  bool started_ = false;
+};
+
+// Where the tool may come straight down at rapid: its disc clear of the allowance roughing left on every face above
+// the level (the allowed region eroded by that and a margin). A descent elsewhere moves to the nearest such point
+// within reach, comes down there and feeds across at the height it came down to; failing that it feeds all the way.
+class SafeDescent {
+ public:
+  SafeDescent(const Region& allowed, double allowance)
+      : allowed_(allowed), safe_(offsetRegion(allowed, -(allowance + kDescentMargin))), locator_(safe_) {}
+
+  // The point to come down at for a descent at `p`, and whether there is one (else feed down at p).
+  bool at(const Point2& p, double max_shift, Point2& out) const {
+    if (locator_.contains(p)) return out = p, true;
+    double best = max_shift * max_shift;
+    bool found = false;
+    for (const ClipperLib::Path& ring : safe_)
+      for (std::size_t i = 0; i < ring.size(); ++i) {
+        const Point2 a = fromRegionPoint(ring[i]), b = fromRegionPoint(ring[(i + 1) % ring.size()]);
+        const Point2 ab = b - a;
+        const double t = ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+        const Point2 q = a + t * ab;
+        const double d = (q - p).squaredNorm();
+        if (d >= best) continue;
+        // A hair inside the safe region, and a straight way from there to p in the allowed region.
+        const Point2 inside = q + (q - p).normalized() * 0.01;
+        if (!locator_.contains(inside) || !segmentInside(allowed_, inside, p)) continue;
+        best = d, out = inside, found = true;
+      }
+    return found;
+  }
+
+ private:
+  static constexpr double kDescentMargin = 0.2;
+  const Region& allowed_;
+  Region safe_;
+  RegionLocator locator_;
+};
+
+// How far down a rapid may come at a point: to the top of the highest slab of stock roughing left whose material
+// lies within the tool's radius (and a margin) of the point; below that the tool feeds. The part and its allowance
+// are kept off by SafeDescent; what this sees is stock roughing could not reach.
+class DescentLimit {
+ public:
+  DescentLimit(const std::vector<SlabState>& slabs, double radius) : slabs_(slabs), reach_(radius + kMargin) {}
+  // The lowest height a rapid may reach at p (-infinity: all the way).
+  double at(const Point2& p) const {
+    const Point2 lo = p - Point2(reach_, reach_), hi = p + Point2(reach_, reach_);
+    for (const SlabState& slab : slabs_) {  // top down
+      const Region near = ringsMeeting(slab.remaining, lo, hi);
+      if (near.empty()) continue;
+      if (regionContains(near, p) || distanceToRings(near, p) <= reach_) return slab.top + kSafeHeight;
+    }
+    return -std::numeric_limits<double>::infinity();
+  }
+
+ private:
+  static constexpr double kMargin = 0.5;
+  static double distanceToRings(const Region& region, const Point2& p) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const ClipperLib::Path& ring : region)
+      for (std::size_t i = 0; i < ring.size(); ++i) {
+        const Point2 a = fromRegionPoint(ring[i]), b = fromRegionPoint(ring[(i + 1) % ring.size()]);
+        const Point2 ab = b - a;
+        const double t = ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+        best = std::min(best, (a + t * ab - p).norm());
+      }
+    return best;
+  }
+  const std::vector<SlabState>& slabs_;
+  double reach_;
+};
+
+// Rapid descents (below the clearance plane) moved to where the tool comes down clear of the allowance, joined to the
+// descent's foot by a feed; where there is none nearby, the descent is a feed.
+std::vector<ClearingPoint> safeDescents(const std::vector<ClearingPoint>& moves, const SafeDescent& safe,
+                                        const DescentLimit& limit, double max_shift);
+
+// Cuts one stretch of ring at height z: entered from the open side (the region lies right of a climb stretch) where
+// the straight lead-in stays in the region, else straight down at its first point.
+void cutStretch(const ContourStretch& s, double z, double top, double lead, const Region& allowed,
+                const SafeDescent& safe, const DescentLimit& limit, PathWriter& out);
+
+}  // namespace art2part::finishing_detail
