@@ -20,19 +20,28 @@
 
 namespace art2part {
 
-struct FaceAssignment {
-  int face = -1;
+// One way to finish a face: a strategy from a direction in a setup.
+struct FinishingChoice {
   FinishingKind kind = FinishingKind::Surface3Axis;
-  int setup = -1;                  // -1: none (unmachinable)
-  Vec3 direction = Vec3::Zero();   // the tool axis, part frame (zero: none)
+  int setup = -1;
+  Vec3 direction = Vec3::Zero();   // the tool axis, part frame
   int hole = -1;                   // Drill, Helix: index into the holes
   double depth = 0;                // SideMill, Contour: the face's extent along the direction, mm
-  bool whole = true;               // the direction sees the whole face (surface finishing may take a face it sees in part)
-  std::string note;                // why not the first choice ("square to no setup direction", "42 mm deep: ...")
-  std::string reason;              // setup == -1: why no direction
+  bool whole = true;               // the direction sees the whole face (visibility); the planner judges the reach
+  std::string note;                // why this is not the shape's first choice ("square to no setup direction: ...")
+};
+
+struct FaceAssignment {
+  int face = -1;
+  // In order of preference; the planner takes the first and, when it reaches little of the face, the next.
+  std::vector<FinishingChoice> choices;
+  std::string reason;              // no choice at all: why
 };
 
 // One per face of the part, by face id. `longest_flutes`: the longest flute length of the library's flat end mills.
+// Choices in order: a hole's drill or helix; a plane's face milling from a setup that sees it whole, side milling
+// (least depth first, within the flutes), face milling from one that sees only part of it; a cylinder's contour
+// likewise; then surface finishing from the setups that meet the face most squarely (at most three).
 std::vector<FaceAssignment> assignFaces(const Part& part, const VisibilityResult& visibility, const SetupPlan& setups,
                                         const std::vector<Hole>& holes, const std::vector<HoleMachining>& methods,
                                         double longest_flutes, const FinishingOptions& options);

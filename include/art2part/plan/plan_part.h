@@ -1,4 +1,5 @@
-// The whole pipeline as one call, without ROS: visibility -> setups -> holes -> roughing -> finishing -> verification
+// The whole pipeline as one call, without ROS: visibility -> setups (the cover, then any added for finishing) -> holes
+// -> roughing -> finishing -> verification
 // (thesis chapters 3-4: from the part to a finished part's toolpaths, checked by simulation). The CLI's `plan` and
 // the nodes call this; nothing else strings the stages together.
 //
@@ -13,6 +14,7 @@
 
 #include "art2part/common/progress.h"
 #include "art2part/finishing/finishing.h"
+#include "art2part/finishing/finishing_setups.h"
 #include "art2part/roughing/roughing.h"
 #include "art2part/setup/setup_plan.h"
 #include "art2part/simulation/verify.h"
@@ -25,7 +27,8 @@ struct PlanOptions {
   SetupOptions setups;
   RoughingOptions roughing;
   FinishingOptions finishing;  // its mode and allowance follow setups.mode and roughing.allowance
-  bool finish = true;          // false: the plan stops after roughing
+  FinishingSetupOptions finishing_setups;  // setups added beyond the cover for faces it leaves without their finish
+  bool finish = true;          // false: the plan stops after roughing (and adds no setup for finishing)
   bool verify = true;          // simulate the whole path (verification.resolution 0: max(0.4, automatic, diagonal/300))
   VerifyOptions verification;
 };

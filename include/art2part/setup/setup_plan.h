@@ -39,12 +39,17 @@ struct Setup {
   std::vector<int> triangles;  // triangles machined from this setup (each machinable triangle in exactly one setup)
   int reachable_triangles = 0; // triangles this setup could reach (more than it is assigned)
   double square_face_area = 0; // mm^2 of flat faces it sees whole and square (the PP "2" entries it earns)
+  // A setup added beyond the minimum cover so that faces get the finish their shape asks for (finishing_setups.h):
+  // its faces and triangles stay with the cover's setups (empty here); it finishes these faces.
+  bool for_finishing = false;
+  std::vector<int> finishing_faces;
 };
 
 struct SetupPlan {
   MachineMode mode = MachineMode::ThreeAxis;
   double max_tilt_deg = 0;
-  std::vector<Setup> setups;             // most assigned area first; frame names setup_0, setup_1, ...
+  std::vector<Setup> setups;             // most assigned area first; frame names setup_0, setup_1, ... Setups added for
+                                         // finishing come last (Setup::for_finishing)
   std::vector<int> unmachinable_triangles;  // reached by no direction
   std::vector<int> unmachinable_faces;      // faces with at least one unmachinable triangle
   std::vector<int> split_faces;             // faces no single chosen setup reaches whole: their triangles are shared out

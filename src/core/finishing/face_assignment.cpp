@@ -14,6 +14,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kSameDirection = 0.01 * kPi / 180;  // a sampled direction this close is the face's own
+constexpr std::size_t kSurfaceChoices = 3;            // surface finishing is offered from this many setups at most
 
 // A direction the plan offers: a setup's, or in 5-axis mode a face's own sampled direction within a setup's tilt.
 struct Offer {
@@ -106,89 +107,80 @@ std::vector<FaceAssignment> assignFaces(const Part& part, const VisibilityResult
     }
     const Cone accessible = commonCone(visibility.map, tris);
     auto sees = [&](const Offer& o) { return o.index >= 0 && o.index < directions.size() && coneHas(accessible, o.index); };
-    auto take = [&](FinishingKind kind, const Offer& o) {
-      a.kind = kind;
-      a.setup = o.setup;
-      a.direction = o.d;
-      return true;
+    auto add = [&](FinishingKind kind, const Offer& o, double depth, bool whole, const std::string& note) {
+      for (const FinishingChoice& c : a.choices)
+        if (c.kind == kind && c.setup == o.setup && c.direction.dot(o.d) > std::cos(1e-6)) return;
+      a.choices.push_back({kind, o.setup, o.d, -1, depth, whole, note});
     };
-    // Holes: along the hole's axis, from a setup that sees the hole's faces whole along it.
+    std::string surface_note;
+    // Holes: along the hole's axis out of it, or for a through hole out of its other end.
     if (hole_of[f] >= 0) {
       const Hole& hole = holes[hole_of[f]];
       std::vector<Offer> offers;
-      // Along the axis out of the hole, or for a through hole out of its other end.
       const double cos_axis = std::cos(options.holes.axis_tolerance_deg * kPi / 180);
       for (const Offer& o : setup_offers)
-        if (o.d.dot(hole.axis) >= cos_axis ||
-            (hole.bottom == HoleBottom::Through && -o.d.dot(hole.axis) >= cos_axis))
+        if (o.d.dot(hole.axis) >= cos_axis || (hole.bottom == HoleBottom::Through && -o.d.dot(hole.axis) >= cos_axis))
           offers.push_back(o);
       for (const Offer& o : ownDirectionOffers(setups, directions, hole.axis, options)) offers.push_back(o);
-      bool done = false;
-      for (const Offer& o : offers)
-        if (sees(o) || o.index < 0) {  // a hole's bottom faces may be unseen by the sampled visibility: the axis rules
-          done = take(methods[hole_of[f]].method == HoleMethod::Drill ? FinishingKind::Drill : FinishingKind::Helix, o);
-          a.hole = hole_of[f];
-          break;
-        }
-      if (done) continue;
-      a.note = "its hole's axis is no setup direction";
+      if (!offers.empty()) {
+        // A hole's bottom faces may be unseen by the sampled visibility: the axis rules.
+        const Offer& o = offers.front();
+        a.choices.push_back({methods[hole_of[f]].method == HoleMethod::Drill ? FinishingKind::Drill : FinishingKind::Helix,
+                             o.setup, o.d, hole_of[f], 0, sees(o), ""});
+      } else {
+        surface_note = "its hole's axis is no setup direction";
+      }
     }
     const std::vector<AdmissibleSet> sets = admissibleSets(part, f, tris);
-    bool done = false;
+    std::vector<std::pair<FinishingKind, Offer>> unseen;  // square or along the axis, not seen whole: tried later
     for (const AdmissibleSet& set : sets) {
-      if (done) break;
       std::vector<Offer> offers;
       for (const Offer& o : setup_offers)
         if (admits(set, o.d, tolerance)) offers.push_back(o);
       if (set.freedom == Freedom::Zero)
         for (const Offer& o : ownDirectionOffers(setups, directions, set.axis, options)) offers.push_back(o);
       if (set.kind == FinishingKind::FaceMill || set.kind == FinishingKind::Contour) {
-        for (const Offer& o : offers)
-          if (sees(o)) {
-            done = take(set.kind, o);
-            a.depth = set.kind == FinishingKind::Contour ? extentAlong(part.mesh, tris, o.d) : 0;
-            break;
-          }
+        for (const Offer& o : offers) {
+          const double depth = set.kind == FinishingKind::Contour ? extentAlong(part.mesh, tris, o.d) : 0;
+          if (sees(o)) add(set.kind, o, depth, true, "");
+          else unseen.push_back({set.kind, o});
+        }
       } else if (set.kind == FinishingKind::SideMill) {
         // The least depth first (4.3.1), and only depths some flat end mill's flutes reach.
-        const Offer* best = nullptr;
-        double best_depth = 1e300;
-        for (const Offer& o : offers) {
-          const double depth = extentAlong(part.mesh, tris, o.d);
-          if (sees(o) && depth < best_depth) best_depth = depth, best = &o;
+        std::vector<std::pair<double, Offer>> by_depth;
+        for (const Offer& o : offers)
+          if (sees(o)) by_depth.push_back({extentAlong(part.mesh, tris, o.d), o});
+        std::sort(by_depth.begin(), by_depth.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+        for (const auto& [depth, o] : by_depth) {
+          if (depth <= longest_flutes) add(set.kind, o, depth, true, "");
+          else if (surface_note.empty())
+            surface_note = "parallel to a setup direction but " + mm(depth) + " deep, beyond every flat end mill's " +
+                           mm(longest_flutes) + " of flutes";
         }
-        if (best && best_depth <= longest_flutes) {
-          done = take(set.kind, *best);
-          a.depth = best_depth;
-        } else if (best) {
-          a.note = "parallel to a setup direction but " + mm(best_depth) + " deep, beyond every flat end mill's " +
-                   mm(longest_flutes) + " of flutes";
-        }
-      } else {  // 2-DOF surface finishing: the setup meeting the face most squarely, whole if one sees it whole
-        const Offer* best = nullptr;
-        double best_score = -1e300;
-        bool best_whole = false;
+      } else {  // 2-DOF surface finishing: the setups meeting the face most squarely, whole ones first
+        for (const auto& [kind, o] : unseen)
+          add(kind, o, kind == FinishingKind::Contour ? extentAlong(part.mesh, tris, o.d) : 0, false,
+              "its direction sees only part of it");
+        std::vector<std::pair<double, Offer>> scored;
         for (const Offer& o : setup_offers) {
           if (!admits(set, o.d, tolerance)) continue;
-          const bool whole = sees(o);
           int seen = 0;
           for (int t : tris) seen += visibility.map.bits.get(t, o.index) ? 1 : 0;
           if (seen == 0) continue;
-          const double score = (whole ? 10.0 : 0.0) + leastDot(set, o.d) + static_cast<double>(seen) / tris.size();
-          if (score > best_score) best_score = score, best = &o, best_whole = whole;
+          scored.push_back({(sees(o) ? 10.0 : 0.0) + leastDot(set, o.d) + static_cast<double>(seen) / tris.size(), o});
         }
-        if (best) {
-          done = take(options.mode == MachineMode::FiveAxis ? FinishingKind::Surface5Axis : FinishingKind::Surface3Axis,
-                      *best);
-          a.whole = best_whole;
-          if (a.note.empty() && (part.faces[f].type == SurfaceType::Plane || part.faces[f].type == SurfaceType::Cylinder))
-            a.note = part.faces[f].type == SurfaceType::Plane
-                         ? "square to no setup direction and parallel to none within reach: surface finishing"
-                         : "its axis is no setup direction: surface finishing";
-        }
+        std::sort(scored.begin(), scored.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+        if (surface_note.empty() && (part.faces[f].type == SurfaceType::Plane || part.faces[f].type == SurfaceType::Cylinder))
+          surface_note = part.faces[f].type == SurfaceType::Plane
+                             ? "square to no setup direction and parallel to none within reach: surface finishing"
+                             : "its axis is no setup direction: surface finishing";
+        const FinishingKind kind =
+            options.mode == MachineMode::FiveAxis ? FinishingKind::Surface5Axis : FinishingKind::Surface3Axis;
+        for (std::size_t i = 0; i < scored.size() && i < kSurfaceChoices; ++i)
+          add(kind, scored[i].second, 0, scored[i].first >= 10.0, surface_note);
       }
     }
-    if (!done) a.reason = "no permissible direction: no setup direction both admits the face and sees it";
+    if (a.choices.empty()) a.reason = "no permissible direction: no setup direction both admits the face and sees it";
   }
   return out;
 }

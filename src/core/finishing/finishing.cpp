@@ -40,7 +40,9 @@ const char* faceStatusName(FaceStatus status) {
 
 namespace {
 
-constexpr double kFinished = 0.99;  // a face whose reached share is at least this counts as finished
+constexpr double kFinished = 0.99;   // a face whose reached share is at least this counts as finished
+constexpr double kRetryShare = 0.5;  // a face reached less than this by its choice tries its next choice
+constexpr int kRounds = 3;           // choices tried per face at most
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -88,6 +90,32 @@ struct Group {
   std::vector<int> surface;  // faces
 };
 
+// What the planner believes of each face: the best share of it reached by any choice tried, which choice, and why
+// not all of it.
+struct Tally {
+  std::vector<double> share;
+  std::vector<int> choice;  // index into the face's choices that reached the best share (-1: none yet)
+  std::vector<std::string> shortfall;
+  void note(int face, int choice_index, double reached_share, const std::string& why) {
+    if (reached_share > share[face] + 1e-12 || this->choice[face] < 0) {
+      share[face] = std::max(share[face], reached_share);
+      this->choice[face] = choice_index;
+      shortfall[face] = why;
+    }
+  }
+};
+
+// The context every group of a plan shares.
+struct Context {
+  const FinishingInput& in;
+  const FinishingOptions& options;
+  const Part& solid;
+  const Mesh& stock;
+  const std::vector<const Tool*>& flats;
+  const std::vector<const Tool*>& balls;
+  const std::vector<std::vector<int>>& triangles;
+};
+
 std::string number(double v, int precision = 3) {
   std::ostringstream s;
   s.precision(precision);
@@ -116,6 +144,231 @@ int toolClass(const Tool* tool) {
   return 3;
 }
 
+
+void runPlanarGroup(const Context& c, const Group& group, const std::vector<int>& tried, Tally& tally,
+                    std::vector<FinishingOperation>& ops) {
+  const Setup& setup = c.in.setups.setups[group.setup];
+  PlanarGroup pg;
+  pg.setup = group.setup;
+  pg.frame = frameFor(c.in.part, setup, group.direction);
+  pg.targets = group.planar;
+  pg.stock = c.stock;
+  if (group.direction.dot(setup.frame.z) > std::cos(1e-6) &&  // the setup's own frame: roughing's slabs hold
+      group.setup < static_cast<int>(c.in.roughing.stock_left.size()))
+    pg.stock_left = c.in.roughing.stock_left[group.setup];
+  PlanarResult result = finishPlanar(c.solid, pg, c.flats, c.options);
+  for (const PlanarReach& r : result.reach) {
+    std::string why;
+    if (r.depth > 0 && r.deepest_reached < r.depth - 0.5)
+      why = number(r.depth) + " mm deep: the flutes reach " + number(r.deepest_reached) +
+            " mm down with the shank and holder clear";
+    tally.note(r.face, tried[r.face], r.size > 0 ? r.reached / r.size : 0, why);
+  }
+  for (FinishingOperation& op : result.operations) ops.push_back(std::move(op));
+}
+
+void runSurfaceGroup(const Context& c, const Group& group, const std::vector<int>& tried, Tally& tally,
+                     std::vector<FinishingOperation>& ops) {
+  const Part& part = c.in.part;
+  const Setup& setup = c.in.setups.setups[group.setup];
+  // The largest ball whose radius fits the faces' concave curvature.
+  double least = std::numeric_limits<double>::infinity();
+  for (int f : group.surface) least = std::min(least, concaveRadius(part, f, c.triangles[f]));
+  const Tool* ball = nullptr;
+  for (const Tool* t : c.balls)
+    if (t->diameter / 2 <= least + 1e-9) {
+      ball = t;
+      break;
+    }
+  if (!ball && !c.balls.empty()) ball = c.balls.back();
+  if (!ball) return;
+  SurfaceFinishingOptions so = c.options.surface;
+  so.skin = std::max(so.skin, c.options.allowance);
+  so.holder_margin = c.options.tools.holder_margin;
+  const bool five = c.options.mode == MachineMode::FiveAxis;
+  SurfaceFinishingResult r =
+      five ? finishSurfaces5Axis(c.solid, group.surface, setup.frame, group.direction, *ball, group.setup, so)
+           : finishSurfaces3Axis(c.solid, group.surface, frameFor(part, setup, group.direction), *ball, group.setup, so);
+  double area = 0;
+  for (int f : group.surface) area += part.faces[f].area;
+  const double share = area > 0 && !r.path.empty() ? std::clamp(r.planned_area_mm2 / area, 0.0, 1.0) : 0;
+  for (int f : group.surface) {
+    std::string why;
+    if (r.skipped_area_mm2 > 0) why = "the shank or holder cannot clear " + number(r.skipped_area_mm2) + " mm2 of its group";
+    const double radius = concaveRadius(part, f, c.triangles[f]);
+    if (ball->diameter / 2 > radius + 1e-9)
+      why = "concave radius " + number(radius) + " mm below the smallest ball's " + number(ball->diameter / 2) + " mm";
+    tally.note(f, tried[f], share, why);
+  }
+  if (r.path.empty()) return;
+  FinishingOperation op;
+  op.setup = group.setup;
+  op.kind = five ? FinishingKind::Surface5Axis : FinishingKind::Surface3Axis;
+  op.tool = ball->id;
+  op.direction = group.direction;
+  op.faces = group.surface;
+  op.path = std::move(r.path);
+  op.plan_seconds = r.seconds;
+  ops.push_back(std::move(op));
+}
+
+// Holes: a spot and a drill run per setup and drill (one signature's tool load), a helix per hole. A through hole
+// reached from its far end is made from there (reversedHole), its method chosen again for that end.
+void makeHoles(const Context& c, const std::vector<FaceAssignment>& assignment, FinishingPlan& plan, Tally& tally,
+               std::vector<std::vector<FinishingOperation>>& per_setup) {
+  const Part& part = c.in.part;
+  std::vector<Hole>& holes = plan.holes;
+  std::vector<HoleMachining>& methods = plan.hole_methods;
+  std::map<std::pair<int, std::string>, std::vector<int>> drilled;  // (setup, drill id) -> holes
+  std::map<int, std::vector<int>> spotted;                          // setup -> holes
+  std::vector<char> turned(holes.size(), 0);
+  for (const FaceAssignment& a : assignment) {
+    if (a.choices.empty() || a.choices.front().hole < 0) continue;
+    const FinishingChoice& choice = a.choices.front();
+    const int h = choice.hole;
+    if (!turned[h] && choice.direction.dot(holes[h].axis) < 0) {
+      turned[h] = 1;
+      holes[h] = reversedHole(part, c.in.holes[h], c.options.holes);
+      methods[h] = chooseHoleMethod(holes[h], c.in.library, c.options.holes);
+    }
+    const HoleMachining& m = methods[h];
+    if (m.method == HoleMethod::None) continue;
+    auto& list = drilled[{choice.setup, m.method == HoleMethod::Drill ? m.drill : "helix:" + m.drill}];
+    if (std::find(list.begin(), list.end(), h) == list.end()) list.push_back(h);
+    if (m.method == HoleMethod::Drill && !m.spot.empty()) {
+      auto& spots = spotted[choice.setup];
+      if (std::find(spots.begin(), spots.end(), h) == spots.end()) spots.push_back(h);
+    }
+  }
+  // The rapids between holes at the setup's clearance plane: over the stock's top along the holes' axis.
+  auto clearanceAbove = [&](const std::vector<int>& group) {
+    const Vec3& d = holes[group.front()].axis;
+    double top = -1e300, mouth = -1e300;
+    for (const Vec3& v : c.stock.vertices) top = std::max(top, v.dot(d));
+    for (int h : group) mouth = std::max(mouth, holes[h].mouth.dot(d));
+    return std::max(c.options.holes.retract_height, top + c.options.clearance - mouth);
+  };
+  auto drillRun = [&](int setup, const std::vector<int>& group, const Tool& tool, bool spot) {
+    std::vector<Hole> list;
+    for (int h : group) list.push_back(holes[h]);
+    FinishingOperation op;
+    op.setup = setup;
+    op.kind = FinishingKind::Drill;
+    op.tool = tool.id;
+    op.direction = list.front().axis;
+    op.path = drillingPath(list, tool, spot, setup, clearanceAbove(group), c.options.holes);
+    for (int h : group) op.faces.insert(op.faces.end(), holes[h].faces.begin(), holes[h].faces.end());
+    if (spot) op.note = "spot drilling";
+    return op;
+  };
+  for (const auto& [setup, group] : spotted)
+    if (const Tool* spot = c.in.library.find(methods[group.front()].spot)) {
+      FinishingOperation op = drillRun(setup, group, *spot, true);
+      if (!op.path.empty()) per_setup[setup].push_back(std::move(op));
+    }
+  for (const auto& [key, group] : drilled) {
+    const auto& [setup, id] = key;
+    const bool helix = id.rfind("helix:", 0) == 0;
+    const Tool* tool = c.in.library.find(helix ? id.substr(6) : id);
+    if (!tool) continue;
+    FinishingOperation op;
+    if (helix) {
+      op.setup = setup;
+      op.kind = FinishingKind::Helix;
+      op.tool = tool->id;
+      op.direction = holes[group.front()].axis;
+      for (int h : group) {
+        op.faces.insert(op.faces.end(), holes[h].faces.begin(), holes[h].faces.end());
+        const Toolpath p = helixPath(holes[h], *tool, setup, clearanceAbove(group), c.options.holes);
+        op.path.insert(op.path.end(), p.begin(), p.end());
+      }
+    } else {
+      op = drillRun(setup, group, *tool, false);
+    }
+    if (op.path.empty()) continue;
+    for (int h : group)
+      for (int f : holes[h].faces) tally.note(f, 0, 1.0, methods[h].reason);
+    per_setup[setup].push_back(std::move(op));
+  }
+}
+
+// Each setup's operations in machining order, each tool loaded once; the plan's operations, tool changes and time.
+void orderOperations(const Context& c, std::vector<std::vector<FinishingOperation>>& per_setup, FinishingPlan& plan) {
+  plan.tool_changes_per_setup.assign(per_setup.size(), 0);
+  for (int k = 0; k < static_cast<int>(per_setup.size()); ++k) {
+    std::vector<FinishingOperation>& ops = per_setup[k];
+    std::map<std::string, int> first;  // tool -> first position
+    for (int i = 0; i < static_cast<int>(ops.size()); ++i) first.try_emplace(ops[i].tool, i);
+    std::stable_sort(ops.begin(), ops.end(), [&](const FinishingOperation& a, const FinishingOperation& b) {
+      const Tool* ta = c.in.library.find(a.tool);
+      const Tool* tb = c.in.library.find(b.tool);
+      const int ca = toolClass(ta), cb = toolClass(tb);
+      if (ca != cb) return ca < cb;
+      const bool spot_a = a.note == "spot drilling", spot_b = b.note == "spot drilling";
+      if (spot_a != spot_b) return spot_a;
+      if (ta && tb && ca == 0 && ta->diameter != tb->diameter) return ta->diameter > tb->diameter;
+      return first[a.tool] < first[b.tool];
+    });
+    std::string loaded;
+    for (FinishingOperation& op : ops) {
+      estimateTime(op, c.in.library, c.options);
+      if (op.tool != loaded) ++plan.tool_changes_per_setup[k], loaded = op.tool;
+      plan.operations.push_back(std::move(op));
+    }
+    plan.tool_changes += plan.tool_changes_per_setup[k];
+  }
+  for (int i = 0; i < static_cast<int>(plan.operations.size()); ++i) {
+    for (CutterLocation& cl : plan.operations[i].path) cl.op = i;
+    plan.seconds += plan.operations[i].seconds;
+  }
+  plan.seconds += plan.tool_changes * c.options.tool_change_s;
+}
+
+// Every face accounted for: its operations and tools, or why it stays unfinished.
+void accountFaces(const Part& part, const std::vector<FaceAssignment>& assignment, const Tally& tally,
+                  FinishingPlan& plan) {
+  plan.faces.assign(part.faces.size(), {});
+  for (int i = 0; i < static_cast<int>(plan.operations.size()); ++i)
+    for (int f : plan.operations[i].faces) {
+      FaceFinish& face = plan.faces[f];
+      if (std::find(face.operations.begin(), face.operations.end(), i) == face.operations.end())
+        face.operations.push_back(i);
+      if (std::find(face.tools.begin(), face.tools.end(), plan.operations[i].tool) == face.tools.end())
+        face.tools.push_back(plan.operations[i].tool);
+    }
+  for (int f = 0; f < static_cast<int>(part.faces.size()); ++f) {
+    FaceFinish& face = plan.faces[f];
+    face.face = f;
+    face.area_mm2 = part.faces[f].area;
+    const FaceAssignment& a = assignment[f];
+    if (a.choices.empty()) {
+      face.status = FaceStatus::Unmachinable;
+      face.reason = a.reason;
+      continue;
+    }
+    const int k = tally.choice[f] >= 0 ? tally.choice[f] : 0;
+    const FinishingChoice& choice = a.choices[k];
+    face.strategy = choice.kind;
+    face.setup = choice.setup;
+    face.direction = choice.direction;
+    const double share = tally.share[f];
+    face.planned_mm2 = share * face.area_mm2;
+    std::string why = tally.shortfall[f];
+    if (share >= kFinished && !face.operations.empty()) {
+      face.status = FaceStatus::Finished;
+      why.clear();
+    } else if (share > 0 && !face.operations.empty()) {
+      face.status = FaceStatus::Partial;
+      if (why.empty()) why = "corners or strips narrower than the smallest tool reaches";
+    } else {
+      face.status = FaceStatus::Unmachinable;
+      if (why.empty()) why = "no tool reaches it with its shank and holder clear";
+    }
+    if (!choice.note.empty() && face.status != FaceStatus::Finished) why += (why.empty() ? "" : "; ") + choice.note;
+    face.reason = why;
+  }
+}
+
 }  // namespace
 
 FinishingPlan planFinishing(const FinishingInput& in, const FinishingOptions& options, const ProgressSink& progress) {
@@ -132,261 +385,64 @@ FinishingPlan planFinishing(const FinishingInput& in, const FinishingOptions& op
       assignFaces(part, in.visibility, in.setups, in.holes, in.hole_methods, longest_flutes, options);
   const std::vector<std::vector<int>> triangles = faceTriangles(part);
   const Mesh stock = roughingStock(part, RoughingOptions{});
-
-  plan.faces.resize(part.faces.size());
-  for (int f = 0; f < static_cast<int>(part.faces.size()); ++f) {
-    FaceFinish& face = plan.faces[f];
-    face.face = f;
-    face.area_mm2 = part.faces[f].area;
-    face.strategy = assignment[f].kind;
-    face.setup = assignment[f].setup;
-    face.direction = assignment[f].direction;
-    face.reason = assignment[f].setup < 0 ? assignment[f].reason : "";
-  }
-
-  // Groups per setup and direction.
-  std::vector<Group> groups;
-  auto groupOf = [&](int setup, const Vec3& d) -> Group& {
-    for (Group& g : groups)
-      if (g.setup == setup && g.direction.dot(d) > std::cos(1e-6)) return g;
-    groups.push_back({setup, d, {}, {}});
-    return groups.back();
-  };
-  for (const FaceAssignment& a : assignment) {
-    if (a.setup < 0) continue;
-    switch (a.kind) {
-      case FinishingKind::FaceMill:
-      case FinishingKind::SideMill:
-      case FinishingKind::Contour: groupOf(a.setup, a.direction).planar.push_back({a.face, a.kind}); break;
-      case FinishingKind::Surface3Axis:
-      case FinishingKind::Surface5Axis: groupOf(a.setup, a.direction).surface.push_back(a.face); break;
-      default: break;
-    }
-  }
-  std::stable_sort(groups.begin(), groups.end(), [](const Group& a, const Group& b) { return a.setup < b.setup; });
-
-  // Per face: the planner's reach.
-  std::vector<double> reached(part.faces.size(), 0), size(part.faces.size(), 0);
-  std::vector<std::string> shortfall(part.faces.size());
+  const Context c{in, options, solid, stock, flats, balls, triangles};
+  const std::size_t faces = part.faces.size();
+  Tally tally{std::vector<double>(faces, 0), std::vector<int>(faces, -1), std::vector<std::string>(faces)};
   std::vector<std::vector<FinishingOperation>> per_setup(in.setups.setups.size());
-  auto addOperation = [&](int setup, FinishingOperation op) {
-    estimateTime(op, in.library, options);
-    per_setup[setup].push_back(std::move(op));
-  };
+  plan.holes = in.holes;
+  plan.hole_methods = in.hole_methods;
+  makeHoles(c, assignment, plan, tally, per_setup);
 
-  const double work = std::max<std::size_t>(1, groups.size() + in.holes.size() / 8 + 1);
-  double done = 0;
-  for (const Group& group : groups) {
-    std::ostringstream message;
-    message << "setup " << group.setup + 1 << " of " << in.setups.setups.size() << ": " << group.planar.size()
-            << " plane and cylinder faces, " << group.surface.size() << " surfaces";
-    if (!reportProgress(progress, "finishing", done / work, message.str())) {
-      plan.cancelled = true;
-      break;
-    }
-    const Setup& setup = in.setups.setups[group.setup];
-    const SetupFrame frame = frameFor(part, setup, group.direction);
-    if (!group.planar.empty()) {
-      PlanarGroup pg;
-      pg.setup = group.setup;
-      pg.frame = frame;
-      pg.targets = group.planar;
-      pg.stock = stock;
-      if (group.direction.dot(setup.frame.z) > std::cos(1e-6) &&  // the setup's own frame: roughing's slabs hold
-          group.setup < static_cast<int>(in.roughing.stock_left.size()))
-        pg.stock_left = in.roughing.stock_left[group.setup];
-      PlanarResult result = finishPlanar(solid, pg, flats, options);
-      for (const PlanarReach& r : result.reach) {
-        size[r.face] = r.size;
-        reached[r.face] = r.reached;
-        if (r.depth > 0 && r.deepest_reached < r.depth - 0.5)
-          shortfall[r.face] = number(r.depth) + " mm deep: the flutes reach " + number(r.deepest_reached) +
-                              " mm down with the shank and holder clear";
-      }
-      for (FinishingOperation& op : result.operations) addOperation(group.setup, std::move(op));
-    }
-    if (!group.surface.empty()) {
-      // The largest ball whose radius fits the faces' concave curvature.
-      double least = std::numeric_limits<double>::infinity();
-      for (int f : group.surface) least = std::min(least, concaveRadius(part, f, triangles[f]));
-      const Tool* ball = nullptr;
-      for (const Tool* t : balls)
-        if (t->diameter / 2 <= least + 1e-9) { ball = t; break; }
-      if (!ball && !balls.empty()) ball = balls.back();
-      if (ball) {
-        SurfaceFinishingOptions so = options.surface;
-        so.skin = std::max(so.skin, options.allowance);
-        so.holder_margin = options.tools.holder_margin;
-        const bool five = options.mode == MachineMode::FiveAxis;
-        SurfaceFinishingResult r = five ? finishSurfaces5Axis(solid, group.surface, setup.frame, group.direction, *ball,
-                                                              group.setup, so)
-                                        : finishSurfaces3Axis(solid, group.surface, frame, *ball, group.setup, so);
-        double area = 0;
-        for (int f : group.surface) area += part.faces[f].area;
-        const double share = area > 0 ? std::clamp(r.planned_area_mm2 / area, 0.0, 1.0) : 0;
-        for (int f : group.surface) {
-          size[f] = part.faces[f].area;
-          reached[f] = share * part.faces[f].area;
-          if (r.skipped_area_mm2 > 0)
-            shortfall[f] = "the shank or holder cannot clear " + number(r.skipped_area_mm2) + " mm2 of its group";
-          if (ball->diameter / 2 > concaveRadius(part, f, triangles[f]) + 1e-9)
-            shortfall[f] = "concave radius " + number(concaveRadius(part, f, triangles[f])) +
-                           " mm below the smallest ball's " + number(ball->diameter / 2) + " mm";
-        }
-        if (!r.path.empty()) {
-          FinishingOperation op;
-          op.setup = group.setup;
-          op.kind = five ? FinishingKind::Surface5Axis : FinishingKind::Surface3Axis;
-          op.tool = ball->id;
-          op.direction = group.direction;
-          op.faces = group.surface;
-          op.path = std::move(r.path);
-          op.plan_seconds = r.seconds;
-          addOperation(group.setup, std::move(op));
-        }
-      }
-    }
-    done += 1;
-  }
-
-  // Holes: a spot and a drill run per setup and drill (one signature's tool load), a helix per hole. A through hole
-  // reached from its far end is made from there (reversedHole), its method chosen again for that end.
-  std::vector<Hole>& holes = plan.holes;
-  std::vector<HoleMachining>& methods = plan.hole_methods;
-  holes = in.holes;
-  methods = in.hole_methods;
-  if (!plan.cancelled) {
-    std::map<std::pair<int, std::string>, std::vector<int>> drilled;  // (setup, drill id) -> holes
-    std::map<int, std::vector<int>> spotted;                          // setup -> holes
-    std::vector<char> turned(holes.size(), 0);
-    for (const FaceAssignment& a : assignment) {
-      if (a.hole < 0 || a.setup < 0) continue;
-      if (!turned[a.hole] && a.direction.dot(holes[a.hole].axis) < 0) {
-        turned[a.hole] = 1;
-        holes[a.hole] = reversedHole(part, in.holes[a.hole], options.holes);
-        methods[a.hole] = chooseHoleMethod(holes[a.hole], in.library, options.holes);
-      }
-      const HoleMachining& m = methods[a.hole];
-      if (m.method == HoleMethod::None) continue;
-      auto& list = drilled[{a.setup, m.method == HoleMethod::Drill ? m.drill : "helix:" + m.drill}];  // NOLINT
-      if (std::find(list.begin(), list.end(), a.hole) == list.end()) list.push_back(a.hole);
-      if (m.method == HoleMethod::Drill && !m.spot.empty()) {
-        auto& spots = spotted[a.setup];
-        if (std::find(spots.begin(), spots.end(), a.hole) == spots.end()) spots.push_back(a.hole);
-      }
-    }
-    // The rapids between holes at the setup's clearance plane: over the stock's top along the holes' axis.
-    auto clearanceAbove = [&](const std::vector<int>& group) {
-      const Vec3& d = holes[group.front()].axis;
-      double top = -1e300, mouth = -1e300;
-      for (const Vec3& v : stock.vertices) top = std::max(top, v.dot(d));
-      for (int h : group) mouth = std::max(mouth, holes[h].mouth.dot(d));
-      return std::max(options.holes.retract_height, top + options.clearance - mouth);
+  // Rounds: each face's next choice while the ones before reached little of it ("checked by profiling, not assumed").
+  std::vector<int> tried(faces, -1);
+  for (int round = 0; round < kRounds && !plan.cancelled; ++round) {
+    std::vector<Group> groups;
+    auto groupOf = [&](int setup, const Vec3& d) -> Group& {
+      for (Group& g : groups)
+        if (g.setup == setup && g.direction.dot(d) > std::cos(1e-6)) return g;
+      groups.push_back({setup, d, {}, {}});
+      return groups.back();
     };
-    for (const auto& [setup, group] : spotted) {
-      std::vector<Hole> list;
-      for (int h : group) list.push_back(holes[h]);
-      const Tool* spot = in.library.find(methods[group.front()].spot);
-      if (!spot) continue;
-      FinishingOperation op;
-      op.setup = setup;
-      op.kind = FinishingKind::Drill;
-      op.tool = spot->id;
-      op.direction = list.front().axis;
-      op.path = drillingPath(list, *spot, true, setup, clearanceAbove(group), options.holes);
-      for (int h : group) op.faces.insert(op.faces.end(), holes[h].faces.begin(), holes[h].faces.end());
-      op.note = "spot drilling";
-      if (!op.path.empty()) addOperation(setup, std::move(op));
-    }
-    for (const auto& [key, group] : drilled) {
-      const auto& [setup, id] = key;
-      const bool helix = id.rfind("helix:", 0) == 0;
-      const Tool* tool = in.library.find(helix ? id.substr(6) : id);
-      if (!tool) continue;
-      FinishingOperation op;
-      op.setup = setup;
-      op.kind = helix ? FinishingKind::Helix : FinishingKind::Drill;
-      op.tool = tool->id;
-      op.direction = holes[group.front()].axis;
-      for (int h : group) {
-        op.faces.insert(op.faces.end(), holes[h].faces.begin(), holes[h].faces.end());
-        if (helix) {
-          const Toolpath p = helixPath(holes[h], *tool, setup, clearanceAbove(group), options.holes);
-          op.path.insert(op.path.end(), p.begin(), p.end());
-        }
+    for (const FaceAssignment& a : assignment) {
+      const int f = a.face;
+      if (tally.share[f] >= kRetryShare) continue;
+      int next = tried[f] + 1;
+      while (next < static_cast<int>(a.choices.size()) && a.choices[next].hole >= 0) ++next;  // holes: made above
+      if (next >= static_cast<int>(a.choices.size())) continue;
+      tried[f] = next;
+      const FinishingChoice& choice = a.choices[next];
+      switch (choice.kind) {
+        case FinishingKind::FaceMill:
+        case FinishingKind::SideMill:
+        case FinishingKind::Contour:
+          groupOf(choice.setup, choice.direction).planar.push_back({f, choice.kind});
+          break;
+        case FinishingKind::Surface3Axis:
+        case FinishingKind::Surface5Axis:
+          groupOf(choice.setup, choice.direction).surface.push_back(f);
+          break;
+        default:
+          break;
       }
-      if (!helix) {
-        std::vector<Hole> list;
-        for (int h : group) list.push_back(holes[h]);
-        op.path = drillingPath(list, *tool, false, setup, clearanceAbove(group), options.holes);
+    }
+    if (groups.empty()) break;
+    std::stable_sort(groups.begin(), groups.end(), [](const Group& a, const Group& b) { return a.setup < b.setup; });
+    for (std::size_t i = 0; i < groups.size(); ++i) {
+      const Group& group = groups[i];
+      std::ostringstream message;
+      message << (round == 0 ? "" : "again, ") << "setup " << group.setup + 1 << " of " << in.setups.setups.size()
+              << ": " << group.planar.size() << " plane and cylinder faces, " << group.surface.size() << " surfaces";
+      const double fraction = (round + static_cast<double>(i) / groups.size()) / kRounds;
+      if (!reportProgress(progress, "finishing", fraction, message.str())) {
+        plan.cancelled = true;
+        break;
       }
-      if (op.path.empty()) continue;
-      for (int h : group)
-        for (int f : holes[h].faces) size[f] = reached[f] = part.faces[f].area;
-      addOperation(setup, std::move(op));
+      if (!group.planar.empty()) runPlanarGroup(c, group, tried, tally, per_setup[group.setup]);
+      if (!group.surface.empty()) runSurfaceGroup(c, group, tried, tally, per_setup[group.setup]);
     }
   }
-
-  // Machining order per setup: each tool loaded once.
-  plan.tool_changes_per_setup.assign(in.setups.setups.size(), 0);
-  for (int k = 0; k < static_cast<int>(per_setup.size()); ++k) {
-    std::vector<FinishingOperation>& ops = per_setup[k];
-    std::map<std::string, int> first;  // tool -> first position
-    for (int i = 0; i < static_cast<int>(ops.size()); ++i) first.try_emplace(ops[i].tool, i);
-    std::stable_sort(ops.begin(), ops.end(), [&](const FinishingOperation& a, const FinishingOperation& b) {
-      const Tool* ta = in.library.find(a.tool);
-      const Tool* tb = in.library.find(b.tool);
-      const int ca = toolClass(ta), cb = toolClass(tb);
-      if (ca != cb) return ca < cb;
-      const bool spot_a = ta && ta->type == ToolType::Drill && a.note == "spot drilling";
-      const bool spot_b = tb && tb->type == ToolType::Drill && b.note == "spot drilling";
-      if (spot_a != spot_b) return spot_a;
-      if (ta && tb && ta->diameter != tb->diameter && ca == 0) return ta->diameter > tb->diameter;
-      return first[a.tool] < first[b.tool];
-    });
-    std::string loaded;
-    for (FinishingOperation& op : ops) {
-      if (op.tool != loaded) ++plan.tool_changes_per_setup[k], loaded = op.tool;
-      plan.operations.push_back(std::move(op));
-    }
-    plan.tool_changes += plan.tool_changes_per_setup[k];
-  }
-  for (int i = 0; i < static_cast<int>(plan.operations.size()); ++i) {
-    for (CutterLocation& c : plan.operations[i].path) c.op = i;
-    plan.seconds += plan.operations[i].seconds;
-  }
-  plan.seconds += plan.tool_changes * options.tool_change_s;
-
-  // Every face accounted for.
-  for (int i = 0; i < static_cast<int>(plan.operations.size()); ++i)
-    for (int f : plan.operations[i].faces) {
-      FaceFinish& face = plan.faces[f];
-      if (std::find(face.operations.begin(), face.operations.end(), i) == face.operations.end())
-        face.operations.push_back(i);
-      if (std::find(face.tools.begin(), face.tools.end(), plan.operations[i].tool) == face.tools.end())
-        face.tools.push_back(plan.operations[i].tool);
-    }
-  for (FaceFinish& face : plan.faces) {
-    if (face.setup < 0) {
-      face.status = FaceStatus::Unmachinable;
-      continue;
-    }
-    face.planned_mm2 = size[face.face] > 0 ? reached[face.face] / size[face.face] * face.area_mm2 : 0;
-    const double share = size[face.face] > 0 ? reached[face.face] / size[face.face] : 0;
-    if (share >= kFinished && !face.operations.empty()) {
-      face.status = FaceStatus::Finished;
-    } else if (share > 0 && !face.operations.empty()) {
-      face.status = FaceStatus::Partial;
-      face.reason = !shortfall[face.face].empty() ? shortfall[face.face]
-                                                   : "corners or strips narrower than the smallest tool reaches";
-    } else {
-      face.status = FaceStatus::Unmachinable;
-      face.reason = !shortfall[face.face].empty() ? shortfall[face.face]
-                                                   : "no tool reaches it with its shank and holder clear";
-    }
-    if (!assignment[face.face].note.empty() && face.status != FaceStatus::Finished)
-      face.reason += face.reason.empty() ? assignment[face.face].note : "; " + assignment[face.face].note;
-  }
+  orderOperations(c, per_setup, plan);
+  accountFaces(part, assignment, tally, plan);
   plan.plan_seconds = secondsSince(start);
   reportProgress(progress, "finishing", 1.0, plan.cancelled ? "cancelled" : "done");
   return plan;

@@ -116,12 +116,19 @@ PlanResult planPart(const Part& part, const ToolLibrary& library, const PlanOpti
   start = Clock::now();
   if (!stage("setups", 0, "minimum cover of the visibility cones")) return r;
   r.setups = planSetups(part, r.visibility, options.setups);
-  timed("setups", start);
-
-  start = Clock::now();
   FinishingOptions finishing = options.finishing;
   finishing.mode = options.setups.mode;
   finishing.allowance = options.roughing.allowance;
+  if (options.finish) {
+    double longest_flutes = 0;
+    for (const Tool& t : library.tools)
+      if (t.type == ToolType::Flat) longest_flutes = std::max(longest_flutes, t.flute_length);
+    for (Setup& s : finishingSetups(part, r.visibility, r.setups, longest_flutes, finishing, options.finishing_setups))
+      r.setups.setups.push_back(std::move(s));
+  }
+  timed("setups", start);
+
+  start = Clock::now();
   if (options.finish) {
     if (!stage("holes", 0, "holes and the drills that make them")) return r;
     r.holes = findHoles(part, finishing.holes);

@@ -25,7 +25,9 @@ nlohmann::json setupJson(const Setup& s, int id, const DirectionSet& directions)
           {"triangles", s.triangles},
           {"triangle_count", s.triangles.size()},
           {"reachable_triangles", s.reachable_triangles},
-          {"square_face_area_mm2", s.square_face_area}};
+          {"square_face_area_mm2", s.square_face_area},
+          {"for_finishing", s.for_finishing},
+          {"finishing_faces", s.finishing_faces}};
 }
 
 nlohmann::json coverStatsJson(const CoverStats& c) {
@@ -61,6 +63,9 @@ std::string setupLine(const Part& part, const Setup& s, int id, const DirectionS
                      std::to_string(s.faces.size()) + " whole faces, " + std::to_string(s.triangles.size()) +
                      " triangles" + format(" (%.0f mm2)", area) + ", reaches " +
                      std::to_string(s.reachable_triangles) + format(", square faces %.0f mm2", s.square_face_area);
+  if (s.for_finishing)
+    line = setupName(id) + ": direction " + format("(%.3f, %.3f, %.3f)", d.x(), d.y(), d.z()) +
+           ", added for finishing " + std::to_string(s.finishing_faces.size()) + " faces no setup of the cover finishes";
   return line + "\n";
 }
 
