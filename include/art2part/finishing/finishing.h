@@ -39,7 +39,8 @@ const char* finishingKindName(FinishingKind kind);
 struct PlanarFinishingOptions {
   double square_angle_deg = 0.1;   // a plane within this of square to (or parallel to) a direction counts as such
   double floor_stepover = 0.7;     // of the tool's diameter, between face milling passes
-  double band_margin = 1.0;        // mm: a wall contour level finishes the wall up to the flutes' top less this
+  double band_margin = 2.5;        // mm: a wall contour level finishes the wall up to the flutes' top less this (more
+                                   // than the 2 mm the shank's bottom is rounded down by, planar_finishing.cpp)
   double link_gap = 2.0;           // mm: contour stretches closer than this along their ring are cut as one
 };
 

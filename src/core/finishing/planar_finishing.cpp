@@ -32,7 +32,7 @@ constexpr double kCoveredShrink = 0.002;   // mm the swept discs are taken small
 constexpr double kThinLeft = 0.01;         // mm: strips of a floor left thinner than twice this are no rest work
 constexpr double kSliver = 0.01;           // mm^2: a tool reaching less than this is no rest tool
 constexpr double kLevelMerge = 0.01;       // mm: levels closer than this are one
-constexpr double kZoneGrid = 1.0;          // mm: shank and holder bottoms' shadows on this grid (rounded down)
+constexpr double kZoneGrid = 2.0;          // mm: shank and holder bottoms' shadows on this grid (rounded down)
 constexpr std::size_t kTrialLevels = 8;
 constexpr double kTrialArc = 0.02;         // mm: a trial's cutter offsets (it compares tools; the paths use kFinishArc)     // levels a tool's trial works (spread over its levels)
 constexpr double kWindowMargin = 3.0;      // mm round a level's work where the exact cutter region is computed
@@ -183,9 +183,14 @@ std::vector<LevelWork> levelsFor(const GroupGeometry& g, const Tool& tool, const
     if (!open) continue;
     const int n = std::max(1, static_cast<int>(std::ceil((wall.hi - wall.lo) / band - 1e-9)));
     const double h = (wall.hi - wall.lo) / n;
+    // The foot exactly; the levels above on the kZoneGrid grid, rounded down (bands overlap the more): walls and tools
+    // then share levels, and the group's shadow stack has fewer heights.
+    double below = wall.lo;
     for (int k = 0; k < n; ++k) {
-      const double z = wall.lo + k * h;
-      at(z).walls.push_back({w, k == n - 1 ? wall.hi : z + h});
+      const double z = k == 0 ? wall.lo : std::max(below, std::floor((wall.lo + k * h) / kZoneGrid) * kZoneGrid);
+      const double top = k == n - 1 ? wall.hi : wall.lo + (k + 1) * h;
+      at(z).walls.push_back({w, top});
+      below = z;
     }
   }
   std::sort(levels.begin(), levels.end(), [](const LevelWork& a, const LevelWork& b) { return a.z > b.z; });
