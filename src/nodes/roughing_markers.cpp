@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "art2part/roughing/shadow.h"
+#include "marker_helpers.h"
 #include "part_conversions.h"
 #include "setup_markers.h"
 
@@ -30,37 +31,8 @@ double lengthMm(double metres, const std::string& field, double default_mm, cons
   return metres > 0 ? metres / kMetresPerMm : default_mm;
 }
 
-std_msgs::ColorRGBA toColour(const RgbColour& c, float alpha = 1.0f) {
-  std_msgs::ColorRGBA out;
-  out.r = c[0];
-  out.g = c[1];
-  out.b = c[2];
-  out.a = alpha;
-  return out;
-}
 
-visualization_msgs::Marker lineMarker(const std::string& frame_id, const std::string& ns, int id, int type,
-                                      double width_mm) {
-  visualization_msgs::Marker m;
-  m.header.frame_id = frame_id;
-  m.ns = ns;
-  m.id = id;
-  m.type = type;
-  m.action = visualization_msgs::Marker::ADD;
-  m.pose.orientation.w = 1.0;
-  m.scale.x = width_mm * kMetresPerMm;  // line width
-  m.scale.y = m.scale.z = 0.0;
-  m.color.a = 1.0f;
-  return m;
-}
 
-geometry_msgs::Vector3 toVectorMsg(const Vec3& v) {
-  geometry_msgs::Vector3 out;
-  out.x = v.x();
-  out.y = v.y();
-  out.z = v.z();
-  return out;
-}
 
 // The levels of the operations of setup k, highest first, duplicates (main and rest operations share heights) merged;
 // critical when any operation says so.

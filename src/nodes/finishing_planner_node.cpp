@@ -1,0 +1,143 @@
+// finishing_planner: face-based finishing of a part loaded in part_server (thesis 4.2-4.3); with the same options the
+// same finishing as `art2part plan` (planPart: visibility, setups and any added for finishing, holes, roughing, then
+// finishing; no verification: that is verify_toolpaths' job).
+//   action:   plan_finishing (PlanFinishing): feedback at every stage and group of faces (stage, fraction, message);
+//             the result holds the finishing operations (MachiningOperation), every face's FaceFinishing, the
+//             finishing toolpath (tips in metres, axes, moves); toolpaths.csv and tools.json of the finishing are
+//             written to the goal's output_dir when it names one
+//   topics:   ~markers (MarkerArray, latched): DELETEALL, finishing feeds by operation kind (ns finishing_<kind>),
+//             rapids (ns finishing_rapids), per face its tool direction as an arrow (ns face_directions), metres
+//   params:   ~frame_id (default "part"), ~tools (the tool library; default the package's config/tools.yaml)
+// A bad goal (unknown part, bad mode, level or length, an unwritable output_dir) is aborted with a one-line reason in
+// result.message; the node stays up. A cancel stops the plan at the next stage or group of faces; it ends preempted.
+#include <actionlib/server/simple_action_server.h>
+#include <ros/ros.h>
+
+#include <chrono>
+#include <filesystem>
+#include <memory>
+
+#include "finishing_markers.h"
+#include "part_client.h"
+
+#ifndef ART2PART_CONFIG_DIR
+#error "ART2PART_CONFIG_DIR (the package's config folder) must be defined by the build"
+#endif
+
+namespace art2part {
+
+class FinishingPlannerNode {
+ public:
+  FinishingPlannerNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
+      : server_(nh, "plan_finishing", [this](const PlanFinishingGoalConstPtr& goal) { execute(goal); }, false) {
+    pnh.param<std::string>("frame_id", frame_id_, "part");
+    pnh.param<std::string>("tools", tools_path_, std::string(ART2PART_CONFIG_DIR) + "/tools.yaml");
+    markers_pub_ = pnh.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
+    server_.start();
+    ROS_INFO("plan_finishing ready (tools: %s)", tools_path_.c_str());
+  }
+
+ private:
+  void execute(const PlanFinishingGoalConstPtr& goal) {
+    PlanFinishingResult result;
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      const PlanOptions options = finishingPlanOptionsFrom(*goal);  // checked before anything is fetched
+      const ToolLibrary library = loadToolLibrary(tools_path_);
+      PlanFinishingFeedback f;
+      f.stage = "fetching part";
+      server_.publishFeedback(f);
+      std::string id;
+      const std::shared_ptr<const Part> part = parts_.get(goal->part_id, &id);
+      const PlanResult plan = planPart(*part, library, options, [this](const ProgressReport& p) {
+        PlanFinishingFeedback feedback;
+        feedback.stage = p.stage;
+        feedback.fraction = p.fraction;
+        feedback.message = p.message;
+        server_.publishFeedback(feedback);
+        return !server_.isPreemptRequested() && ros::ok();
+      });
+      if (plan.cancelled) {
+        result.success = false;
+        result.message = "preempted";
+        result.seconds = secondsSince(start);
+        server_.setPreempted(result, result.message);
+        return;
+      }
+      fillFinishingResult(*part, plan, result);
+      if (!goal->output_dir.empty()) writeFiles(plan, goal->output_dir);
+      result.mode = machineModeName(plan.setups.mode);
+      result.success = true;
+      result.seconds = secondsSince(start);
+      result.message = summary(id, result, goal->output_dir);
+      f.stage = "done";
+      f.fraction = 1;
+      server_.publishFeedback(f);
+      markers_pub_.publish(finishingMarkers(*part, plan, frame_id_));
+      ROS_INFO("plan_finishing: %s", result.message.c_str());
+      server_.setSucceeded(result);
+    } catch (const std::exception& e) {  // InputError (a bad goal) and anything else: no crash
+      const bool preempted = server_.isPreemptRequested();
+      result = PlanFinishingResult();
+      result.success = false;
+      result.message = preempted ? "preempted: " + std::string(e.what()) : e.what();
+      result.seconds = secondsSince(start);
+      ROS_WARN("plan_finishing: %s", result.message.c_str());
+      if (preempted) server_.setPreempted(result, result.message);
+      else server_.setAborted(result, result.message);
+    }
+  }
+
+  static void writeFiles(const PlanResult& plan, const std::string& folder) {
+    std::error_code error;
+    std::filesystem::create_directories(folder, error);
+    if (error || !std::filesystem::is_directory(folder))
+      throw InputError("output_dir '" + folder + "' cannot be made: " +
+                       (error ? error.message() : std::string("not a directory")));
+    const Toolpath path = finishingToolpath(plan);
+    std::vector<Tool> tools;
+    for (const Tool& t : plan.tools)
+      if (std::any_of(path.begin(), path.end(), [&](const CutterLocation& c) { return c.tool == t.id; }))
+        tools.push_back(t);
+    writeToolpathsCsv(path, (std::filesystem::path(folder) / "toolpaths.csv").string());
+    writeToolsJson(tools, (std::filesystem::path(folder) / "tools.json").string());
+  }
+
+  static std::string summary(const std::string& id, const PlanFinishingResult& result, const std::string& output_dir) {
+    int finished = 0, partial = 0, unmachinable = 0;
+    for (const FaceFinishing& f : result.faces) {
+      finished += f.status == "finished";
+      partial += f.status == "partial";
+      unmachinable += f.status == "unmachinable";
+    }
+    std::string text = "part '" + id + "': " + std::to_string(result.operations.size()) + " finishing operations in " +
+                       std::to_string(result.setup_count) + " setups (" + std::to_string(result.finishing_setups) +
+                       " added for finishing), " + std::to_string(result.tool_changes) + " tool changes, " +
+                       std::to_string(result.holes_drilled) + " holes drilled; faces: " + std::to_string(finished) +
+                       " finished, " + std::to_string(partial) + " partial, " + std::to_string(unmachinable) +
+                       " unmachinable; ~" + std::to_string(static_cast<long>(result.estimated_time_s)) + " s machining";
+    if (!output_dir.empty()) text += "; wrote " + output_dir + "/{toolpaths.csv,tools.json}";
+    return text;
+  }
+
+  static double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+
+  actionlib::SimpleActionServer<PlanFinishingAction> server_;
+  std::string frame_id_, tools_path_;
+  ros::Publisher markers_pub_;
+  PartClient parts_;  // only the action's thread uses it
+};
+
+}  // namespace art2part
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "finishing_planner");
+  ros::NodeHandle nh, pnh("~");
+  art2part::FinishingPlannerNode node(nh, pnh);
+  ros::AsyncSpinner spinner(1);  // goals and cancels arrive while the action's thread plans
+  spinner.start();
+  ros::waitForShutdown();
+  return 0;
+}

@@ -1,0 +1,56 @@
+#include "marker_helpers.h"
+
+#include "part_conversions.h"
+
+namespace art2part {
+
+std_msgs::ColorRGBA toColour(const RgbColour& c, float alpha) {
+  std_msgs::ColorRGBA out;
+  out.r = c[0];
+  out.g = c[1];
+  out.b = c[2];
+  out.a = alpha;
+  return out;
+}
+
+geometry_msgs::Vector3 toVectorMsg(const Vec3& v) {
+  geometry_msgs::Vector3 out;
+  out.x = v.x();
+  out.y = v.y();
+  out.z = v.z();
+  return out;
+}
+
+visualization_msgs::Marker lineMarker(const std::string& frame_id, const std::string& ns, int id, int type,
+                                      double width_mm) {
+  visualization_msgs::Marker m;
+  m.header.frame_id = frame_id;
+  m.ns = ns;
+  m.id = id;
+  m.type = type;
+  m.action = visualization_msgs::Marker::ADD;
+  m.pose.orientation.w = 1.0;
+  m.scale.x = width_mm * kMetresPerMm;  // line width
+  m.scale.y = m.scale.z = 0.0;
+  m.color.a = 1.0f;
+  return m;
+}
+
+visualization_msgs::Marker deleteAllMarker(const std::string& frame_id) {
+  visualization_msgs::Marker clear;
+  clear.header.frame_id = frame_id;
+  clear.action = visualization_msgs::Marker::DELETEALL;
+  clear.pose.orientation.w = 1.0;
+  return clear;
+}
+
+void appendMoves(visualization_msgs::Marker& lines, const Toolpath& path, std::size_t first, std::size_t last,
+                 MoveKind kind) {
+  for (std::size_t j = first + 1; j < last && j < path.size(); ++j) {
+    if (path[j].move != kind || path[j].tool != path[j - 1].tool || path[j].setup != path[j - 1].setup) continue;
+    lines.points.push_back(toPointMsg(path[j - 1].tip));
+    lines.points.push_back(toPointMsg(path[j].tip));
+  }
+}
+
+}  // namespace art2part
