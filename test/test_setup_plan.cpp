@@ -431,10 +431,18 @@ TEST(SetupCli, PlanWritesPlanJsonWithTheSetups) {
   ASSERT_EQ(setups.status, 0) << setups.err;
   const auto s = nlohmann::json::parse(setups.out);
   ASSERT_TRUE(j["setups"].is_array());
-  ASSERT_EQ(j["setups"].size(), s["setups"].size());
-  for (std::size_t k = 0; k < j["setups"].size(); ++k) {
+  // The cover's setups first, as `setups` gives them; then any added for finishing (issue 17), machining no triangle
+  // of the cover's assignment but faces no cover setup finishes.
+  ASSERT_GE(j["setups"].size(), s["setups"].size());
+  for (std::size_t k = 0; k < s["setups"].size(); ++k) {
     EXPECT_EQ(j["setups"][k]["direction_index"], s["setups"][k]["direction_index"]);
     EXPECT_EQ(j["setups"][k]["triangles"], s["setups"][k]["triangles"]);
+    EXPECT_FALSE(j["setups"][k]["for_finishing"].get<bool>());
+  }
+  for (std::size_t k = s["setups"].size(); k < j["setups"].size(); ++k) {
+    EXPECT_TRUE(j["setups"][k]["for_finishing"].get<bool>()) << k;
+    EXPECT_TRUE(j["setups"][k]["triangles"].empty()) << k;
+    EXPECT_FALSE(j["setups"][k]["finishing_faces"].empty()) << k;
   }
   EXPECT_EQ(j["part"]["triangles"], s["triangles"]);
   EXPECT_EQ(j["directions"].size(), readDirections(dir + "/directions.csv").size());
@@ -447,7 +455,15 @@ TEST(SetupCli, PlanWritesPlanJsonWithTheSetups) {
   // Issue 6's figure: the simulation finds no gouge and no collision in the example's plan.
   EXPECT_EQ(j["verification"]["gouges"], 0);
   EXPECT_EQ(j["verification"]["collisions"], 0);
-  for (const char* stage : {"load", "visibility", "setups", "roughing", "verification", "post"})
+  // Issue 17: the part comes out finished: finishing operations, every face accounted for.
+  bool finishing = false;
+  for (const auto& op : j["operations"]) finishing = finishing || op["stage"] == "finishing";
+  EXPECT_TRUE(finishing);
+  ASSERT_TRUE(j["faces"].is_array());
+  EXPECT_EQ(j["faces"].size(), j["part"]["faces"].get<std::size_t>());
+  for (const auto& f : j["faces"])
+    if (f["status"] != "finished") EXPECT_TRUE(f.contains("reason")) << f.dump();
+  for (const char* stage : {"load", "visibility", "setups", "roughing", "finishing", "verification", "post"})
     EXPECT_TRUE(j["timings"].contains(stage)) << stage;
   for (const char* file : {"setups.png", "mesh.stl", "visibility.bits", "toolpaths.csv", "tools.json", "program.ngc",
                            "remaining.png"})

@@ -47,7 +47,8 @@ struct PlanarFinishingOptions {
 // Which tools finish what.
 struct FinishingToolOptions {
   double area_fraction = 0.9;      // the largest tool reaching this fraction of the area the smallest one reaches
-  int max_rest_tools = 3;          // rest finishing: at most this many smaller tools per group after the first
+  int max_rest_tools = 4;          // rest finishing: at most this many smaller tools per group after the first (20 mm
+                                   // halving down to the library's 1 mm takes four)
   double holder_margin = 0.5;      // mm between shank or holder and material
 };
 

@@ -326,7 +326,7 @@ void orderOperations(const Context& c, std::vector<std::vector<FinishingOperatio
 
 // Every face accounted for: its operations and tools, or why it stays unfinished.
 void accountFaces(const Part& part, const std::vector<FaceAssignment>& assignment, const Tally& tally,
-                  FinishingPlan& plan) {
+                  double smallest_radius, FinishingPlan& plan) {
   plan.faces.assign(part.faces.size(), {});
   for (int i = 0; i < static_cast<int>(plan.operations.size()); ++i)
     for (int f : plan.operations[i].faces) {
@@ -359,7 +359,10 @@ void accountFaces(const Part& part, const std::vector<FaceAssignment>& assignmen
       why.clear();
     } else if (share > 0 && !face.operations.empty()) {
       face.status = FaceStatus::Partial;
-      if (why.empty()) why = "corners or strips narrower than the smallest tool reaches";
+      if (why.empty()) {
+        why = "corners or strips narrower than the smallest tool reaches";
+        face.radius_needed_mm = smallest_radius;  // what is left needs a tool no larger than the smallest tried
+      }
     } else {
       face.status = FaceStatus::Unmachinable;
       if (why.empty()) why = "no tool reaches it with its shank and holder clear";
@@ -442,7 +445,7 @@ FinishingPlan planFinishing(const FinishingInput& in, const FinishingOptions& op
     }
   }
   orderOperations(c, per_setup, plan);
-  accountFaces(part, assignment, tally, plan);
+  accountFaces(part, assignment, tally, flats.empty() ? 0.0 : flats.back()->diameter / 2, plan);
   plan.plan_seconds = secondsSince(start);
   reportProgress(progress, "finishing", 1.0, plan.cancelled ? "cancelled" : "done");
   return plan;

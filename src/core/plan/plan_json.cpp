@@ -116,7 +116,17 @@ nlohmann::json planJson(const Part& part, const PlanResult& plan) {
   nlohmann::json faces = nlohmann::json::array();
   std::map<std::string, int> by_status;
   for (const FaceFinish& f : plan.finishing.faces) {
-    faces.push_back(faceFinishJson(part, f));
+    nlohmann::json face = faceFinishJson(part, f);
+    // The simulation's word on the face (roughing and finishing together): material left above it, deepest gouge.
+    if (plan.verified && f.face < static_cast<int>(plan.verification.face_checks.size())) {
+      const FaceVerification& check = plan.verification.face_checks[f.face];
+      face["simulated"] = {{"left_max_mm", check.left_max_mm},
+                           {"left_mean_mm", check.left_mean_mm},
+                           {"samples", check.samples},
+                           {"gouges", check.gouges},
+                           {"deepest_gouge_mm", check.deepest_gouge_mm}};
+    }
+    faces.push_back(face);
     ++by_status[faceStatusName(f.status)];
   }
   j["faces"] = faces;
