@@ -6,8 +6,16 @@
 #include <cmath>
 #include <random>
 
+#include <BRepAlgoAPI_Fuse.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeSphere.hxx>
+#include <STEPControl_Writer.hxx>
+#include <gp_Pnt.hxx>
+
 #include "art2part/finishing/drop_cutter.h"
 #include "art2part/finishing/surface_finishing.h"
+#include "art2part/simulation/tool_solid.h"
+#include "art2part/simulation/verify.h"
 #include "test_meshes.h"
 
 using namespace art2part;
@@ -209,4 +217,203 @@ TEST(DropCutter, RefusesADrill) {
   Tool drill = cutter("drill6", ToolType::Drill, 6);
   const Mesh m = test::box(Vec3(0, 0, 0), Vec3(1, 1, 1));
   EXPECT_THROW(DropCutter(m.vertices, m.triangles, drill), InputError);
+}
+
+namespace {
+
+// ---- parts made with OpenCASCADE, written to STEP and loaded (B-rep faces with their radii) ------------------------
+
+Part stepPart(const TopoDS_Shape& shape, const std::string& name, double chordal = 0.01) {
+  const std::string path = test::tempDir() + "/" + name + ".step";
+  STEPControl_Writer writer;
+  writer.Transfer(shape, STEPControl_AsIs);
+  writer.Write(path.c_str());
+  LoadOptions options;
+  options.chordal_tolerance = chordal;
+  return loadPart(path, options);
+}
+
+// A 40 x 40 x 10 block with a hemisphere of radius 15 on its top, everything grown by `grow` (the stock: the part
+// and a skin; the block's edges stay sharp, so it holds a little more than the skin there).
+TopoDS_Shape dome(double grow) {
+  const TopoDS_Shape block =
+      BRepPrimAPI_MakeBox(gp_Pnt(-20 - grow, -20 - grow, -grow), gp_Pnt(20 + grow, 20 + grow, 10 + grow)).Shape();
+  const TopoDS_Shape cap = BRepPrimAPI_MakeSphere(gp_Pnt(0, 0, 10), 15 + grow, 0, M_PI / 2).Shape();
+  return BRepAlgoAPI_Fuse(block, cap).Shape();
+}
+
+std::vector<int> facesOfType(const Part& part, SurfaceType type) {
+  std::vector<int> out;
+  for (int f = 0; f < static_cast<int>(part.faces.size()); ++f)
+    if (part.faces[f].type == type) out.push_back(f);
+  return out;
+}
+
+// A ball end mill in a slim shrink-fit holder (the library's ball6).
+Tool ball6() {
+  Tool t = cutter("ball6", ToolType::Ball, 6);
+  t.flute_length = 12;
+  t.stickout = 30;
+  t.holder = {{23, 12}, {25, 13}, {27, 13}, {44, 42}};
+  return t;
+}
+
+// ---- the scallop on simulated stock: a fine lattice of rays along the surface normal over a small window ----------
+
+struct WindowScallop {
+  double max_mm = 0;       // the highest material left above the surface on a reached ray
+  double deepest_mm = 0;   // the deepest the tool went below the surface (a gouge)
+  int rays = 0, reached = 0;
+};
+
+// Rays at `pitch` over a square of side 2 half_width around p, along n: on each the part's surface (the mesh, exactly)
+// and the lowest point the flutes reach over the feed moves' poses (every pitch / 2 along each move): the cusp is the
+// difference. Independent of the planner: the tool's solid from the simulation, the poses from the toolpath alone.
+WindowScallop measureScallop(const Mesh& mesh, const Toolpath& path, const Tool& tool, const Vec3& p, const Vec3& n,
+                             double half_width, double pitch) {
+  const Vec3 e1 = n.unitOrthogonal(), e2 = n.cross(e1);
+  const int k = static_cast<int>(std::ceil(half_width / pitch));
+  const int side = 2 * k + 1;
+  const double depth = 2.0;
+  std::vector<double> surface(side * side, std::nan("")), lowest(side * side, std::numeric_limits<double>::infinity());
+  // The part along each ray (Moller-Trumbore against the triangles near the window).
+  for (int t = 0; t < mesh.triangleCount(); ++t) {
+    const Vec3 &a = mesh.corner(t, 0), &b = mesh.corner(t, 1), &c = mesh.corner(t, 2);
+    if ((triangleCentroid(mesh, t) - p).norm() > 2 * half_width + 5) continue;
+    for (int i = 0; i < side; ++i)
+      for (int j = 0; j < side; ++j) {
+        const Vec3 o = p + (i - k) * pitch * e1 + (j - k) * pitch * e2 + depth * n, d = -n;
+        const Vec3 ab = b - a, ac = c - a, q = d.cross(ac);
+        const double det = ab.dot(q);
+        if (std::abs(det) < 1e-14) continue;
+        const Vec3 s = o - a;
+        const double u = s.dot(q) / det;
+        const Vec3 r = s.cross(ab);
+        const double v = d.dot(r) / det, tt = ac.dot(r) / det;
+        if (u < 0 || v < 0 || u + v > 1 || tt < 0 || tt > 2 * depth) continue;
+        double& w = surface[i * side + j];
+        w = std::isnan(w) ? depth - tt : std::max(w, depth - tt);
+      }
+  }
+  const ToolSolid solid = toolSolid(tool);
+  const double R = 0.5 * tool.diameter;
+  for (std::size_t m = 1; m < path.size(); ++m) {
+    if (path[m].move != MoveKind::Feed) continue;
+    const Vec3 A = path[m - 1].tip, B = path[m].tip;
+    const Vec3 ab = B - A;
+    const double len = ab.norm();
+    const double t0 = len > 0 ? std::clamp((p - A).dot(ab) / (len * len), 0.0, 1.0) : 0.0;
+    if ((A + t0 * ab - p).norm() > 2 * R + 2 * half_width + 1) continue;
+    const int steps = std::max(1, static_cast<int>(std::ceil(len / (0.5 * pitch))));
+    for (int s = 0; s <= steps; ++s) {
+      const double t = static_cast<double>(s) / steps;
+      const Vec3 axis = ((1 - t) * path[m - 1].axis + t * path[m].axis).normalized();
+      const Vec3 tip = A + t * ab - p;
+      ToolPose pose;
+      pose.tip = Vec3(tip.dot(e1), tip.dot(e2), tip.dot(n));
+      pose.axis = Vec3(axis.dot(e1), axis.dot(e2), axis.dot(n));
+      if ((pose.tip + R * pose.axis).head<2>().norm() > R + 1.5 * half_width) continue;
+      for (const ToolPiece& piece : solid.pieces) {
+        if (piece.zone != ToolZone::Flutes) continue;
+        const Box box = pieceBox(piece, pose);
+        const int i0 = std::max(0, static_cast<int>(std::floor(box.min.x() / pitch)) + k);
+        const int i1 = std::min(side - 1, static_cast<int>(std::ceil(box.max.x() / pitch)) + k);
+        const int j0 = std::max(0, static_cast<int>(std::floor(box.min.y() / pitch)) + k);
+        const int j1 = std::min(side - 1, static_cast<int>(std::ceil(box.max.y() / pitch)) + k);
+        for (int i = i0; i <= i1; ++i)
+          for (int j = j0; j <= j1; ++j) {
+            Span span;
+            if (rayPieceSpan(piece, pose, Vec3((i - k) * pitch, (j - k) * pitch, 0), 2, span))
+              lowest[i * side + j] = std::min(lowest[i * side + j], span.lo);
+          }
+      }
+    }
+  }
+  WindowScallop out;
+  for (int r = 0; r < side * side; ++r) {
+    if (std::isnan(surface[r])) continue;
+    ++out.rays;
+    if (!std::isfinite(lowest[r]) || lowest[r] > surface[r] + 1.0) continue;  // no cut passed over this ray
+    ++out.reached;
+    out.max_mm = std::max(out.max_mm, lowest[r] - surface[r]);
+    out.deepest_mm = std::max(out.deepest_mm, surface[r] - lowest[r]);
+  }
+  return out;
+}
+
+Vec3 onDome(double polar_deg, double azimuth_deg) {
+  const double a = polar_deg * M_PI / 180, b = azimuth_deg * M_PI / 180;
+  return Vec3(std::sin(a) * std::cos(b), std::sin(a) * std::sin(b), std::cos(a));
+}
+
+}  // namespace
+
+TEST(SurfaceFinishing, ScallopStepoverIsTheExactCusp) {
+  // Flat: the notes' table (6 mm ball: 0.346, 0.489, 0.692 mm at 0.005, 0.01, 0.02 mm).
+  EXPECT_NEAR(scallopStepover(3, 0.005, std::numeric_limits<double>::infinity()), 0.346, 5e-4);
+  EXPECT_NEAR(scallopStepover(3, 0.01, std::numeric_limits<double>::infinity()), 0.489, 5e-4);
+  EXPECT_NEAR(scallopStepover(5, 0.01, std::numeric_limits<double>::infinity()), 0.632, 5e-4);
+  // Curved: two balls phi apart on a circle of centres; the cusp where they meet, computed directly.
+  for (double rho : {20.0, -20.0, 8.0, -4.5, 1000.0}) {
+    const double R = 3, h = 0.01;
+    const double c = scallopStepover(R, h, rho);
+    const double D = rho > 0 ? rho + R : -rho - R, phi = c / D;
+    // Ball centres at angle +-phi/2 on the circle of radius D around the origin; the surface is the circle |rho|.
+    const Eigen::Vector2d c1(D * std::sin(phi / 2), D * std::cos(phi / 2));
+    // The meeting point on the bisector (x = 0): |(0, y) - c1| = R, on the surface's side.
+    const double dy = std::sqrt(R * R - c1.x() * c1.x());
+    const double y = rho > 0 ? c1.y() - dy : c1.y() + dy;
+    const double cusp = rho > 0 ? y - rho : -rho - y;
+    EXPECT_NEAR(cusp, h, 1e-9) << rho;
+    // And the notes' first-order form on the surface: h = (w^2 / 8)(1/R + 1/rho), w = c rho / (rho + R).
+    const double w = std::abs(c * rho / D);
+    EXPECT_NEAR(w * w / 8 * (1 / R + 1 / rho), h, 0.02 * h) << rho;
+  }
+  EXPECT_THROW(scallopStepover(3, 0.01, -2.5), InputError);
+  EXPECT_THROW(scallopStepover(0, 0.01, 10), InputError);
+  EXPECT_DOUBLE_EQ(scallopStepover(3, 5, 10), 6);
+}
+
+TEST(SurfaceFinishing, DomeFinishedWithoutGougesOrCollisionsAndTheScallopHolds) {
+  const Part part = stepPart(dome(0), "dome");
+  const Part stock = stepPart(dome(0.3), "dome_stock");
+  const std::vector<int> spheres = facesOfType(part, SurfaceType::Sphere);
+  ASSERT_EQ(spheres.size(), 1u);
+  const Tool tool = ball6();
+  SurfaceFinishingOptions options;
+  const SurfaceFinishingResult r = finishSurfaces3Axis(part, spheres, setupFrame(part, Vec3::UnitZ()), tool, 0, options);
+  const double area = part.faces[spheres[0]].area;
+  std::printf("dome: %zu points, stepover %.3f (rows %.3f, levels %.3f), %d raster runs, %d levels, %d contours, "
+              "%d retracts, %ld drops, %.2f s; planned %.0f of %.0f mm2, skipped %.0f, unreached %.0f\n",
+              r.path.size(), r.stepover_mm, r.raster_stepover_mm, r.height_step_mm, r.raster_passes,
+              r.waterline_levels, r.waterline_contours, r.retracts, r.drops, r.seconds, r.planned_area_mm2, area,
+              r.skipped_area_mm2, r.unreached_area_mm2);
+  ASSERT_GT(r.path.size(), 100u);
+  EXPECT_GT(r.raster_passes, 10);
+  EXPECT_GT(r.waterline_contours, 10);
+  // The ball reaches the hemisphere down to where it meets the block's top: cos(polar) >= R / (15 + R).
+  EXPECT_NEAR(r.planned_area_mm2 / area, 1 - 3.0 / 18, 0.03);
+  EXPECT_EQ(r.skipped_area_mm2, 0);
+
+  VerifyOptions vo;
+  vo.stock_mesh = &stock.mesh;
+  const VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, r.path, {tool}, vo);
+  std::printf("dome verified: %d gouges (worst %.4f), %d collisions, %d moves, %.1f s at %.3f mm\n", report.gouges,
+              report.worst_gouge_mm, report.collisions, report.moves, report.seconds_total, report.resolution_mm);
+  EXPECT_EQ(report.gouges, 0);
+  EXPECT_EQ(report.collisions, 0);
+
+  // The scallop on simulated stock, at a twentieth of the stepover: on the shallow top (raster) and the steep side
+  // (waterline), each window away from where the two regions overlap.
+  const double pitch = r.stepover_mm / 20;
+  for (const auto& [polar, what] : {std::pair{18.0, "raster"}, std::pair{28.0, "raster"}, std::pair{62.0, "waterline"},
+                                    std::pair{72.0, "waterline"}}) {
+    const Vec3 n = onDome(polar, 35);
+    const WindowScallop w = measureScallop(part.mesh, r.path, tool, Vec3(0, 0, 10) + 15 * n, n, 0.6, pitch);
+    std::printf("scallop at polar %.0f deg (%s): %.4f mm (target %.3f), deepest cut %.4f, %d of %d rays reached\n",
+                polar, what, w.max_mm, options.scallop, w.deepest_mm, w.reached, w.rays);
+    EXPECT_GT(w.reached, w.rays * 9 / 10);
+    EXPECT_LE(w.max_mm, 1.1 * options.scallop) << what;
+    EXPECT_LE(w.deepest_mm, 0.01) << what;
+  }
 }

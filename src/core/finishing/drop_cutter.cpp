@@ -16,7 +16,7 @@ constexpr double kMinFacetNz = 1e-9;
 // Edges shorter than this in x-y (vertical ones) are left to their two vertices, where their maximum lies.
 constexpr double kMinEdgeLength = 1e-12;
 // Cell side in tool radii: a footprint meets 3 x 3 cells at most, and a cell holds few triangles of a wall.
-constexpr double kCellPerRadius = 1.0;
+constexpr double kCellPerRadius = 0.5;
 // The grid never has more cells than this (a tiny tool over a large mesh): the cell grows instead.
 constexpr double kMaxCells = 16e6;
 
@@ -358,11 +358,20 @@ double DropCutter::drop(double x, double y, double floor, int* triangle) const {
     const int ic = std::clamp(static_cast<int>(std::floor((x - m.x0) / m.cell)), i0, i1);
     const int jc = std::clamp(static_cast<int>(std::floor((y - m.y0) / m.cell)), j0, j1);
     auto visit = [&](int i, int j) {
+      // Cells whose nearest point lies beyond the radius hold nothing under the footprint.
+      const double cx = std::max({0.0, m.x0 + i * m.cell - x, x - (m.x0 + (i + 1) * m.cell)});
+      const double cy = std::max({0.0, m.y0 + j * m.cell - y, y - (m.y0 + (j + 1) * m.cell)});
+      if (cx * cx + cy * cy > m.R2) return;
       const int c = j * m.nx + i;
       for (int k = m.cell_start[c], end = m.cell_start[c + 1]; k < end; ++k) {
         const Entry& e = m.entries[k];
         if (e.zmax <= best) break;
-        if (e.xmin > x + R || e.xmax < x - R || e.ymin > y + R || e.ymax < y - R) continue;
+        // The triangle's nearest point in x-y is at least as far as its box: no point of it rises above
+        // zmax - f(that distance).
+        const double dx = std::max({0.0, e.xmin - x, x - e.xmax}), dy = std::max({0.0, e.ymin - y, y - e.ymax});
+        const double d2 = dx * dx + dy * dy;
+        if (d2 > m.R2) continue;
+        if (m.shape != Shape::Flat && e.zmax - m.profile(std::sqrt(d2)) <= best) continue;
         m.evaluate(e.triangle, x, y, best, best_triangle);
       }
     };

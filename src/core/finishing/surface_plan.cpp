@@ -1,0 +1,335 @@
+// Planning the passes of one direction: the CL map over the faces, the region and its steep and shallow parts, the
+// clearance maps, the stepovers, raster and waterline passes, and what the planner believes they reach.
+#include "surface_plan.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "art2part/roughing/shadow.h"
+
+namespace art2part::surface {
+
+namespace {
+
+// Triangles whose outward normal points below the direction by more than this (n.z) face away from the tool.
+constexpr double kFacingTolerance = 1e-6;
+// mm: a face triangle counts as reached when the tool can come this close to its centroid: the tolerance of the
+// coverage figure (surface_coverage.h).
+constexpr double kReachTolerance = 0.05;
+// mm: the CL point of a wall's point is taken this far off the wall; exactly at the tool's radius the tool stands on
+// the cliff's edge and touches the wall's top instead.
+constexpr double kOffWall = 1e-4;
+// A flat end mill on a level face leaves no cusp: its passes overlap by a fifth of the diameter.
+constexpr double kFlatStepoverOfDiameter = 0.8;
+// The body's clearance maps are this much coarser than the CL map (their radii grow by their pitch).
+constexpr double kClearancePitchFactor = 2;
+
+Vec3 unitNormal(const std::vector<Vec3>& v, const Triangle& t) {
+  const Vec3 n = (v[t[1]] - v[t[0]]).cross(v[t[2]] - v[t[0]]);
+  const double len = n.norm();
+  return len > 0 ? Vec3(n / len) : Vec3::Zero();
+}
+
+// Distance in x-y from (x, y) to the triangle q (2-D).
+double distanceToTriangle(const double q[3][2], double x, double y) {
+  double s[3];
+  for (int k = 0; k < 3; ++k) {
+    const int l = (k + 1) % 3;
+    s[k] = (q[l][0] - q[k][0]) * (y - q[k][1]) - (q[l][1] - q[k][1]) * (x - q[k][0]);
+  }
+  if ((s[0] >= 0 && s[1] >= 0 && s[2] >= 0) || (s[0] <= 0 && s[1] <= 0 && s[2] <= 0)) return 0;
+  double best = kInf;
+  for (int k = 0; k < 3; ++k) {
+    const int l = (k + 1) % 3;
+    const double ex = q[l][0] - q[k][0], ey = q[l][1] - q[k][1];
+    const double len2 = ex * ex + ey * ey;
+    const double t = len2 > 0 ? std::clamp(((x - q[k][0]) * ex + (y - q[k][1]) * ey) / len2, 0.0, 1.0) : 0.0;
+    best = std::min(best, std::hypot(x - q[k][0] - t * ex, y - q[k][1] - t * ey));
+  }
+  return best;
+}
+
+// Concave bends of the CL surface tighter than this (times the tool's effective radius) are creases, where the tool
+// touches two sides of a hollow it does not fit: what is left there is rest finishing's, not a scallop. Above it a
+// smooth hollow of radius P > 1.5 R takes at least 0.58 times the flat's spacing; below, the cusp may grow up to
+// P / (P - R) times the target, on hollows no wider than the tool.
+constexpr double kCreaseOfRadius = 0.5;
+// Concave bends wider than this (times the tool's effective radius) count as flat: the spacing they ask for is within
+// 0.1 % of the flat's.
+constexpr double kFlatOfRadius = 1000;
+// Concave radii below the tool's (times this) are hollows the tool cannot follow.
+constexpr double kFollowableConcave = 1.001;
+// Second derivatives of the CL map span this many nodes each way: a mesh's facets make the CL surface a chain of
+// slight creases, which one node each way reads as bends tighter than the surface's.
+constexpr int kBendStencil = 2;
+
+struct Derivatives {
+  double x = 0, y = 0, xx = 0, yy = 0, xy = 0;
+};
+
+// First derivatives by central (or one-sided) differences, second ones over kBendStencil nodes (0 where the stencil
+// leaves the nodes the tool touches the part at).
+Derivatives derivatives(const Context& ctx, int i, int j) {
+  const Grid& g = ctx.grid;
+  auto usable = [&](int a, int b) { return a >= 0 && b >= 0 && a < g.nx && b < g.ny && ctx.contact[g.node(a, b)] >= 0; };
+  auto h = [&](int a, int b) { return ctx.height[g.node(a, b)]; };
+  auto first = [&](int di, int dj) {
+    const bool fwd = usable(i + di, j + dj), back = usable(i - di, j - dj);
+    if (!fwd && !back) return 0.0;
+    const double zf = fwd ? h(i + di, j + dj) : h(i, j), zb = back ? h(i - di, j - dj) : h(i, j);
+    return (zf - zb) / ((fwd + back) * g.pitch);
+  };
+  const int k = kBendStencil;
+  const double step2 = (k * g.pitch) * (k * g.pitch);
+  auto second = [&](int di, int dj) {
+    if (!usable(i + k * di, j + k * dj) || !usable(i - k * di, j - k * dj)) return 0.0;
+    return (h(i + k * di, j + k * dj) - 2 * h(i, j) + h(i - k * di, j - k * dj)) / step2;
+  };
+  Derivatives d;
+  d.x = first(1, 0);
+  d.y = first(0, 1);
+  d.xx = second(1, 0);
+  d.yy = second(0, 1);
+  if (usable(i + k, j + k) && usable(i + k, j - k) && usable(i - k, j + k) && usable(i - k, j - k))
+    d.xy = (h(i + k, j + k) - h(i + k, j - k) - h(i - k, j + k) + h(i - k, j - k)) / (4 * step2);
+  return d;
+}
+
+// The region grown by `cells` nodes (a square), onto nodes the tool touches the part at.
+void dilate(const Context& ctx, std::vector<std::uint8_t>& mask, int cells) {
+  const Grid& g = ctx.grid;
+  auto usable = [&](int n) { return ctx.contact[n] >= 0; };
+  for (int pass = 0; pass < 2; ++pass) {
+    std::vector<std::uint8_t> out(mask.size(), 0);
+    for (int j = 0; j < g.ny; ++j)
+      for (int i = 0; i < g.nx; ++i) {
+        if (!mask[g.node(i, j)]) continue;
+        for (int d = -cells; d <= cells; ++d) {
+          const int ii = pass == 0 ? i + d : i, jj = pass == 0 ? j : j + d;
+          if (ii < 0 || jj < 0 || ii >= g.nx || jj >= g.ny) continue;
+          if (usable(g.node(ii, jj))) out[g.node(ii, jj)] = 1;
+        }
+      }
+    mask.swap(out);
+  }
+}
+
+}  // namespace
+
+Plan planPasses(const Part& part, const std::vector<int>& faces_in, const SetupFrame& frame, const Tool& tool,
+                const SurfaceFinishingOptions& o, bool body, SurfaceFinishingResult& result) {
+  const auto start = std::chrono::steady_clock::now();
+  checkTool(tool);
+  if (tool.type == ToolType::Drill)
+    throw InputError("surface finishing: tool '" + tool.id + "' is a drill (ball, bull or flat end mills only)");
+  checkOptions(o);
+  Plan plan;
+  plan.faces = checkedFaces(part, faces_in);
+  plan.vertices = toFrame(part.mesh.vertices, frame);
+  const std::vector<Vec3>& v = plan.vertices;
+  const std::vector<Triangle>& tris = part.mesh.triangles;
+  plan.cutter = std::make_unique<DropCutter>(v, tris, tool);
+  const double R = 0.5 * tool.diameter, r = plan.cutter->cornerRadius(), Rp = R - r;
+  const Box bounds = plan.cutter->bounds();
+  plan.top = bounds.max.z();
+
+  // The spacing of the cutter centres on a flat (a flat end mill: passes overlapping by a fifth).
+  const double spacing = r > 0 ? scallopStepover(r, o.scallop, kInf) : kFlatStepoverOfDiameter * tool.diameter;
+  result.stepover_mm = spacing;
+  const double pitch = o.map_pitch > 0 ? o.map_pitch : 0.25 * R;
+  const double margin = std::max(o.region_margin > 0 ? o.region_margin : spacing, pitch);
+  const int threads = threadCount(o.threads);
+
+  // The faces' triangles, and those facing the direction (the window of the map).
+  std::vector<char> face_member(part.faces.size(), 0), in_face(tris.size(), 0);
+  for (int f : plan.faces) face_member[f] = 1;
+  std::vector<int> facing;
+  Box window;
+  for (std::size_t t = 0; t < tris.size(); ++t) {
+    if (!face_member[part.triangle_face[t]]) continue;
+    in_face[t] = 1;
+    if (unitNormal(v, tris[t]).z() < -kFacingTolerance) {
+      result.unreached_area_mm2 += triangleArea(part.mesh, static_cast<int>(t));
+      continue;
+    }
+    facing.push_back(static_cast<int>(t));
+    for (int k = 0; k < 3; ++k) window.extend(v[tris[t][k]]);
+  }
+  if (facing.empty()) {
+    result.seconds_map = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return plan;
+  }
+  const double reach = R + margin + 2 * pitch;
+  window.min -= Vec3(reach, reach, 0);
+  window.max += Vec3(reach, reach, 0);
+
+  plan.ctx = std::make_unique<Context>();
+  Context& ctx = *plan.ctx;
+  ctx.cutter = plan.cutter.get();
+  ctx.floor = bounds.min.z() - 2 * R - 1;
+  ctx.grid = gridOver(window, pitch);
+  ctx.gouge_tolerance = 0.5 * o.chordal_tolerance;
+  ctx.leave_tolerance = kLeaveShare * o.chordal_tolerance;
+  ctx.sample_step = o.sample_step > 0 ? o.sample_step : 0.1 * R;
+  ctx.min_step = 0.25 * o.chordal_tolerance;
+  ctx.feed_link = o.feed_link_mm > 0 ? o.feed_link_mm : tool.diameter;
+  ctx.threads = threads;
+  const Grid& g = ctx.grid;
+
+  // The CL map near the faces: nodes within the tool's radius and the margin of a facing face triangle.
+  std::vector<char> candidate(g.size(), 0);
+  for (int t : facing) {
+    double lo[2] = {kInf, kInf}, hi[2] = {-kInf, -kInf};
+    for (int k = 0; k < 3; ++k)
+      for (int a = 0; a < 2; ++a) lo[a] = std::min(lo[a], v[tris[t][k]][a]), hi[a] = std::max(hi[a], v[tris[t][k]][a]);
+    const double grow = R + margin + pitch;
+    for (int j = g.nearestJ(lo[1] - grow); j <= g.nearestJ(hi[1] + grow); ++j)
+      for (int i = g.nearestI(lo[0] - grow); i <= g.nearestI(hi[0] + grow); ++i) candidate[g.node(i, j)] = 1;
+  }
+  ctx.height.assign(g.size(), std::nan(""));
+  ctx.contact.assign(g.size(), -1);
+  parallelFor(g.ny, threads, [&](int j) {
+    long count = 0;
+    for (int i = 0; i < g.nx; ++i) {
+      const int n = g.node(i, j);
+      if (!candidate[n]) continue;
+      int triangle;
+      ctx.height[n] = ctx.cutter->drop(g.x(i), g.y(j), ctx.floor, &triangle);
+      ctx.contact[n] = triangle;
+      ++count;
+    }
+    ctx.drops.fetch_add(count, std::memory_order_relaxed);
+  });
+
+  // The region: nodes touching a face triangle, and the nodes where a face triangle's facet contact lies (the triangle
+  // shifted by the tool's contact offset) unless something higher holds the tool there; grown by the margin.
+  ctx.region.assign(g.size(), 0);
+  for (std::size_t n = 0; n < g.size(); ++n) ctx.region[n] = ctx.contact[n] >= 0 && in_face[ctx.contact[n]];
+  const double near = 0.7072 * pitch;  // a node is within this of every point of its cell quarter
+  for (int t : facing) {
+    const Vec3 nrm = unitNormal(v, tris[t]);
+    const double nxy = std::hypot(nrm.x(), nrm.y());
+    const double ux = nxy > 1e-12 ? nrm.x() / nxy : 0, uy = nxy > 1e-12 ? nrm.y() / nxy : 0;
+    const double offx = (Rp + kOffWall) * ux + r * nrm.x(), offy = (Rp + kOffWall) * uy + r * nrm.y();
+    double q[3][2], zmax = -kInf, lo[2] = {kInf, kInf}, hi[2] = {-kInf, -kInf};
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& p = v[tris[t][k]];
+      q[k][0] = p.x() + offx;
+      q[k][1] = p.y() + offy;
+      zmax = std::max(zmax, p.z());
+      for (int a = 0; a < 2; ++a) lo[a] = std::min(lo[a], q[k][a]), hi[a] = std::max(hi[a], q[k][a]);
+    }
+    for (int j = g.nearestJ(lo[1] - near); j <= g.nearestJ(hi[1] + near); ++j)
+      for (int i = g.nearestI(lo[0] - near); i <= g.nearestI(hi[0] + near); ++i) {
+        const int n = g.node(i, j);
+        if (ctx.region[n] || ctx.contact[n] < 0 || ctx.height[n] > zmax + kReachTolerance) continue;
+        if (distanceToTriangle(q, g.x(i), g.y(j)) <= near) ctx.region[n] = 1;
+      }
+  }
+  dilate(ctx, ctx.region, static_cast<int>(std::ceil(margin / pitch)));
+
+  // The body's clearance maps.
+  std::vector<Zone> cutter_zone{{R, 0, o.skin}};
+  if (body) {
+    Grid coarse = gridOver(window, kClearancePitchFactor * pitch);
+    ctx.body = clearanceMap(v, tris, coarse, bodyZones(tool, o.skin + o.holder_margin), threads, ctx.drops);
+    ctx.safe = clearanceMap(v, tris, coarse, cutter_zone, threads, ctx.drops);
+    for (std::size_t n = 0; n < ctx.safe.tip.size(); ++n) ctx.safe.tip[n] = std::max(ctx.safe.tip[n], ctx.body.tip[n]);
+  }
+  // Slopes of the CL surface; the steep and shallow parts, overlapping by kSteepOverlapDeg each way.
+  ctx.slope.assign(g.size(), 0);
+  ctx.raster.assign(g.size(), 0);
+  ctx.waterline.assign(g.size(), 0);
+  ctx.row_spacing.assign(g.size(), kInf);
+  ctx.level_spacing.assign(g.size(), kInf);
+  const double tan_shallow = std::tan((o.steep_angle_deg + kSteepOverlapDeg) * M_PI / 180);
+  const double tan_steep = std::tan((o.steep_angle_deg - kSteepOverlapDeg) * M_PI / 180);
+  const std::vector<double> face_radius = faceConcaveRadii(part);
+  double least = kInf;
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      const int n = g.node(i, j);
+      if (!ctx.region[n]) continue;
+      // Nodes where the shank or holder cannot clear are not cut: no passes are planned over them.
+      if (!ctx.bodyClear(Vec3(g.x(i), g.y(j), ctx.height[n]))) continue;
+      const Derivatives d = derivatives(ctx, i, j);
+      ctx.slope[n] = std::hypot(d.x, d.y);
+      ctx.raster[n] = ctx.slope[n] < tan_shallow;
+      ctx.waterline[n] = ctx.slope[n] > tan_steep;
+      // The concave radius of the part across the passes (y) and up the slope (the gradient): the face's own where it
+      // has one, else from the CL surface's bend, unless that is a crease (the tool against two sides).
+      const double fr = face_radius[part.triangle_face[ctx.contact[n]]] > kFollowableConcave * r
+                            ? face_radius[part.triangle_face[ctx.contact[n]]]
+                            : kInf;
+      auto concave = [&](double bend, double slope) {
+        if (!std::isinf(fr)) return fr;
+        const double kappa = bend / std::pow(1 + slope * slope, 1.5);
+        if (!(kappa > 0) || r <= 0) return kInf;
+        const double centre = 1 / kappa;
+        return centre >= kCreaseOfRadius * r && centre < kFlatOfRadius * r ? centre + r : kInf;
+      };
+      auto centreSpacing = [&](double radius) {
+        return radius > kFollowableConcave * r && !std::isinf(radius) ? scallopStepover(r, o.scallop, -radius) : spacing;
+      };
+      const double across = std::abs(d.y), up = ctx.slope[n];
+      if (ctx.raster[n]) {
+        const double p = concave(d.yy, across);
+        if (r > 0) {
+          least = std::min(least, p);
+          ctx.row_spacing[n] = centreSpacing(p) * std::cos(std::atan(across));
+        } else {  // a flat end mill's staircase: h = s sin(alpha) across a slope
+          const double sin_a = std::sin(std::atan(across));
+          ctx.row_spacing[n] = sin_a > 0 ? std::min(spacing, o.scallop / sin_a) : spacing;
+        }
+      }
+      if (ctx.waterline[n]) {
+        const double gx = d.x / up, gy = d.y / up;
+        const double p = concave(gx * gx * d.xx + 2 * gx * gy * d.xy + gy * gy * d.yy, up);
+        if (r > 0) {
+          least = std::min(least, p);
+          ctx.level_spacing[n] = centreSpacing(p) * std::sin(std::atan(up));
+        } else {  // h = dz cos(alpha) down a slope
+          ctx.level_spacing[n] = std::min(R, o.scallop / std::cos(std::atan(up)));
+        }
+      }
+    }
+  result.least_radius_mm = std::isinf(least) ? kInf : -least;
+
+  plan.clearance_z = plan.top + o.clearance;
+  for (double z : ctx.safe.tip) plan.clearance_z = std::max(plan.clearance_z, z + o.link_margin);
+  plan.short_link = o.short_link_mm > 0 ? o.short_link_mm : 10 * tool.diameter;
+  result.seconds_map = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  double mean_row = 0, mean_level = 0;
+  const auto rows = rasterRows(ctx, mean_row);
+  const auto levels = waterlineLevels(ctx, mean_level);
+  result.raster_stepover_mm = mean_row;
+  result.height_step_mm = mean_level;
+  plan.ordered = orderPasses(ctx, levels, rows);
+  result.raster_passes = plan.ordered.raster_runs;
+  result.waterline_levels = plan.ordered.levels;
+  result.waterline_contours = plan.ordered.contours;
+
+  // What the planner believes: a facing face triangle is reached when the tool can come to its centroid (its CL
+  // point there is no higher than the contact), and cut when the body clears there too.
+  for (int t : facing) {
+    const double area = triangleArea(part.mesh, t);
+    const Vec3 nrm = unitNormal(v, tris[t]);
+    const double nxy = std::hypot(nrm.x(), nrm.y());
+    const double ux = nxy > 1e-12 ? nrm.x() / nxy : 0, uy = nxy > 1e-12 ? nrm.y() / nxy : 0;
+    const Vec3 c = (v[tris[t][0]] + v[tris[t][1]] + v[tris[t][2]]) / 3;
+    const double x = c.x() + (Rp + kOffWall) * ux + r * nrm.x(), y = c.y() + (Rp + kOffWall) * uy + r * nrm.y();
+    const double expected = c.z() - r + r * nrm.z();
+    const double z = ctx.drop(x, y);
+    if (z > expected + kReachTolerance || !ctx.inRegion(x, y))
+      result.unreached_area_mm2 += area;
+    else if (!ctx.bodyClear(Vec3(x, y, z)))
+      result.skipped_area_mm2 += area;
+    else
+      result.planned_area_mm2 += area;
+  }
+  return plan;
+}
+
+}  // namespace art2part::surface
