@@ -417,3 +417,88 @@ TEST(SurfaceFinishing, DomeFinishedWithoutGougesOrCollisionsAndTheScallopHolds) 
     EXPECT_LE(w.deepest_mm, 0.01) << what;
   }
 }
+
+namespace {
+
+// A block with a hemisphere of radius 8 on it and, 8 mm beside the hemisphere, a wall 30 mm tall: from above, a
+// holder wider than that gap hits the wall's top while the ball works on the hemisphere's side near it.
+TopoDS_Shape domeByWall(double grow) {
+  const TopoDS_Shape block =
+      BRepPrimAPI_MakeBox(gp_Pnt(-30 - grow, -20 - grow, -grow), gp_Pnt(30 + grow, 20 + grow, 10 + grow)).Shape();
+  const TopoDS_Shape wall =
+      BRepPrimAPI_MakeBox(gp_Pnt(16 - grow, -20 - grow, 10), gp_Pnt(20 + grow, 20 + grow, 40 + grow)).Shape();
+  const TopoDS_Shape cap = BRepPrimAPI_MakeSphere(gp_Pnt(0, 0, 10), 8 + grow, 0, M_PI / 2).Shape();
+  return BRepAlgoAPI_Fuse(BRepAlgoAPI_Fuse(block, wall).Shape(), cap).Shape();
+}
+
+}  // namespace
+
+TEST(SurfaceFinishing, FiveAxisTiltsWhereTheThreeAxisHolderCollides) {
+  const Part part = stepPart(domeByWall(0), "dome_by_wall");
+  const Part stock = stepPart(domeByWall(0.3), "dome_by_wall_stock");
+  const std::vector<int> spheres = facesOfType(part, SurfaceType::Sphere);
+  ASSERT_EQ(spheres.size(), 1u);
+  Tool tool = ball6();
+  tool.stickout = 20;
+  tool.holder = {{40, 30}};
+  const SetupFrame frame = setupFrame(part, Vec3::UnitZ());
+  SurfaceFinishingOptions options;
+  const SurfaceFinishingResult three = finishSurfaces3Axis(part, spheres, frame, tool, 0, options);
+  const Vec3 away(-std::sin(40 * M_PI / 180), 0, std::cos(40 * M_PI / 180));
+  const SurfaceFinishingResult five = finishSurfaces5Axis(part, spheres, frame, away, tool, 0, options);
+  std::printf("3-axis: %zu points, planned %.0f mm2, skipped %.0f (holder), %.2f s\n", three.path.size(),
+              three.planned_area_mm2, three.skipped_area_mm2, three.seconds);
+  std::printf("5-axis: %zu points, planned %.0f mm2, skipped %.0f, %.2f s\n", five.path.size(), five.planned_area_mm2,
+              five.skipped_area_mm2, five.seconds);
+  EXPECT_GT(three.skipped_area_mm2, 50);
+  EXPECT_GT(five.planned_area_mm2, three.planned_area_mm2 + 0.5 * three.skipped_area_mm2);
+
+  // The tilt: never beyond the face's direction, never above max_tilt, turning at most max_tilt_rate per mm.
+  double most = 0, fastest = 0;
+  int tilted = 0;
+  for (std::size_t k = 0; k < five.path.size(); ++k) {
+    const double tilt = std::acos(std::clamp(five.path[k].axis.z(), -1.0, 1.0)) * 180 / M_PI;
+    most = std::max(most, tilt);
+    tilted += tilt > 0.5;
+    EXPECT_LE(five.path[k].axis.y(), 1e-9);
+    EXPECT_LE(five.path[k].axis.x(), 1e-9);  // leaning towards -x, the face's side
+    if (k > 0 && five.path[k].move == MoveKind::Feed && five.path[k - 1].move == MoveKind::Feed) {
+      const Vec3 c0 = five.path[k - 1].tip + 3 * five.path[k - 1].axis, c1 = five.path[k].tip + 3 * five.path[k].axis;
+      const double turn = std::acos(std::clamp(five.path[k].axis.dot(five.path[k - 1].axis), -1.0, 1.0)) * 180 / M_PI;
+      if ((c1 - c0).norm() > 1e-6) fastest = std::max(fastest, turn / (c1 - c0).norm());
+    }
+  }
+  std::printf("5-axis tilt: at most %.1f deg, %d poses tilted, fastest turn %.2f deg/mm along a pass\n", most, tilted,
+              fastest);
+  EXPECT_GT(tilted, 100);
+  EXPECT_LE(most, 40 + 1e-6);
+  EXPECT_LE(fastest, options.max_tilt_rate_deg_mm + 1e-3);
+
+  VerifyOptions vo;
+  vo.stock_mesh = &stock.mesh;
+  vo.resolution = 0.15;
+  for (const auto* r : {&three, &five}) {
+    const VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, r->path, {tool}, vo);
+    std::printf("%s verified: %d gouges (worst %.4f), %d collisions (worst %.3f), %d moves, %.1f s\n",
+                r == &three ? "3-axis" : "5-axis", report.gouges, report.worst_gouge_mm, report.collisions,
+                report.worst_collision_mm, report.moves, report.seconds_total);
+    EXPECT_EQ(report.gouges, 0);
+    EXPECT_EQ(report.collisions, 0);
+  }
+  // The same ball centres with the axis upright, along the stretch of the path that leans most: the holder meets the
+  // wall.
+  std::size_t most_at = 0;
+  for (std::size_t k = 0; k < five.path.size(); ++k)
+    if (five.path[k].move == MoveKind::Feed && five.path[k].axis.z() < five.path[most_at].axis.z()) most_at = k;
+  Toolpath upright;
+  for (std::size_t k = most_at; k < five.path.size() && five.path[k].move == MoveKind::Feed && upright.size() < 40; ++k) {
+    CutterLocation c = five.path[k];
+    c.tip = c.tip + 3 * c.axis - 3 * Vec3::UnitZ();
+    c.axis = Vec3::UnitZ();
+    upright.push_back(c);
+  }
+  const VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, upright, {tool}, vo);
+  std::printf("the 5-axis centres with the axis upright (%zu poses): %d collisions (worst %.2f mm)\n", upright.size(),
+              report.collisions, report.worst_collision_mm);
+  EXPECT_GT(report.collisions, 0);
+}

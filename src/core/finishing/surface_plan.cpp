@@ -327,7 +327,7 @@ Plan planPasses(const Part& part, const std::vector<int>& faces_in, const SetupF
     else if (!ctx.bodyClear(Vec3(x, y, z)))
       result.skipped_area_mm2 += area;
     else
-      result.planned_area_mm2 += area;
+      result.planned_area_mm2 += area, plan.planned.push_back(t);
   }
   return plan;
 }

@@ -16,6 +16,7 @@ struct Plan {
   std::unique_ptr<Context> ctx;          // null when no face triangle faces the direction
   Ordered ordered;
   std::vector<int> faces;                // sorted, unique
+  std::vector<int> planned;              // the face triangles the planner believes cut (planned_area_mm2)
   double top = 0;                        // the part's highest z in the frame
   double clearance_z = 0;                // the retract height
   double short_link = 0;                 // mm
