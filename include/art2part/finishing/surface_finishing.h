@@ -95,7 +95,9 @@ struct SurfaceFinishingResult {
   int retracts = 0;             // links through the clearance height
   long drops = 0;               // drop-cutter queries (the CL map, passes, refinement, links)
   double seconds = 0;
-  double seconds_map = 0;       // of which the CL map and the clearance maps
+  double seconds_map = 0;       // of which the CL map and the clearance maps,
+  double seconds_raster = 0;    // the raster rows,
+  double seconds_waterline = 0; // the waterline levels
 };
 
 // 3-axis finishing of `faces` (ids into part.faces) of a closed part from `frame.z` with a ball, bull or flat end mill.

@@ -302,8 +302,12 @@ Plan planPasses(const Part& part, const std::vector<int>& faces_in, const SetupF
   result.seconds_map = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   double mean_row = 0, mean_level = 0;
+  auto clock = std::chrono::steady_clock::now();
   const auto rows = rasterRows(ctx, mean_row);
+  result.seconds_raster = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock).count();
+  clock = std::chrono::steady_clock::now();
   const auto levels = waterlineLevels(ctx, mean_level);
+  result.seconds_waterline = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock).count();
   result.raster_stepover_mm = mean_row;
   result.height_step_mm = mean_level;
   plan.ordered = orderPasses(ctx, levels, rows);

@@ -276,9 +276,27 @@ std::vector<Pass> contoursAt(const Context& ctx, const std::vector<Cell>& cells,
     if (ids.size() < 2) return;
     std::vector<Vec3> raw;
     for (long e : ids) raw.push_back(pointOf(e));
+    // The turn at each crossing (its neighbours' directions); a loop's ends are its neighbours across the seam.
+    const std::size_t n = raw.size();
+    std::vector<double> turn(n, M_PI);
+    for (std::size_t k = 0; k < n; ++k) {
+      const bool inner = k > 0 && k + 1 < n;
+      if (!inner && !(contour.closed && n > 3)) continue;
+      const Vec3& a = k > 0 ? raw[k - 1] : raw[n - 2];
+      const Vec3& c = k + 1 < n ? raw[k + 1] : raw[1];
+      const Vec3& b = raw[k];
+      const double t1 = std::atan2(b.y() - a.y(), b.x() - a.x()), t2 = std::atan2(c.y() - b.y(), c.x() - b.x());
+      turn[k] = std::abs(std::remainder(t2 - t1, 2 * M_PI));
+    }
     contour.points.push_back(raw.front());
-    for (std::size_t k = 1; k < raw.size(); ++k) {
-      level.refine(raw[k - 1], raw[k], contour.points, 0);
+    for (std::size_t k = 1; k < n; ++k) {
+      // An arc through the crossings with chord L turning by theta leaves its chord by L theta / 8; a chord whose
+      // neighbours turn so little that twice that stays within the tolerances is taken as it is (a wall of the part
+      // is straight between crossings, up to the crossings' own scatter within the leave tolerance), the rest are
+      // looked at.
+      const double len = std::hypot(raw[k].x() - raw[k - 1].x(), raw[k].y() - raw[k - 1].y());
+      const double sag = 0.25 * len * std::max(turn[k - 1], turn[k]);
+      if (sag > std::min(ctx.gouge_tolerance, ctx.leave_tolerance)) level.refine(raw[k - 1], raw[k], contour.points, 0);
       contour.points.push_back(raw[k]);
     }
     contour.points = thin(contour.points, ctx.gouge_tolerance, ctx.leave_tolerance, true);
