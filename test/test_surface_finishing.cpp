@@ -6,6 +6,7 @@
 #include <cmath>
 #include <random>
 
+#include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
@@ -501,4 +502,60 @@ TEST(SurfaceFinishing, FiveAxisTiltsWhereTheThreeAxisHolderCollides) {
   std::printf("the 5-axis centres with the axis upright (%zu poses): %d collisions (worst %.2f mm)\n", upright.size(),
               report.collisions, report.worst_collision_mm);
   EXPECT_GT(report.collisions, 0);
+}
+
+namespace {
+
+// A 50 x 40 x 20 block with a spherical pocket of radius 12 sunk 8 mm into its top (a concave face), grown by `grow`.
+TopoDS_Shape pocket(double grow) {
+  const TopoDS_Shape block =
+      BRepPrimAPI_MakeBox(gp_Pnt(-25 - grow, -20 - grow, -grow), gp_Pnt(25 + grow, 20 + grow, 20 + grow)).Shape();
+  const TopoDS_Shape ball = BRepPrimAPI_MakeSphere(gp_Pnt(0, 0, 24), 12 - grow).Shape();
+  return BRepAlgoAPI_Cut(block, ball).Shape();
+}
+
+}  // namespace
+
+TEST(SurfaceFinishing, ConcavePocketScallopHoldsAndBullAndFlatMillsDoNotGouge) {
+  const Part part = stepPart(pocket(0), "pocket");
+  const Part stock = stepPart(pocket(0.3), "pocket_stock");
+  const std::vector<int> spheres = facesOfType(part, SurfaceType::Sphere);
+  ASSERT_EQ(spheres.size(), 1u);
+  ASSERT_TRUE(part.faces[spheres[0]].concave);
+  const SetupFrame frame = setupFrame(part, Vec3::UnitZ());
+  VerifyOptions vo;
+  vo.stock_mesh = &stock.mesh;
+  vo.resolution = 0.15;
+  SurfaceFinishingOptions options;
+  Tool bull = cutter("bull8", ToolType::Bull, 8, 1.0);
+  bull.flute_length = 16, bull.stickout = 32, bull.holder = {{32, 20}, {40, 44}};
+  Tool flat = cutter("flat6", ToolType::Flat, 6);
+  flat.flute_length = 16, flat.stickout = 28, flat.holder = {{32, 20}, {40, 44}};
+  for (const Tool& tool : {ball6(), bull, flat}) {
+    // A flat end mill leaves a staircase on a curved face: a coarser target keeps its passes few.
+    options.scallop = tool.type == ToolType::Flat ? 0.05 : 0.01;
+    const SurfaceFinishingResult r = finishSurfaces3Axis(part, spheres, frame, tool, 0, options);
+    const VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, r.path, {tool}, vo);
+    std::printf("pocket, %s: %zu points, centre spacing %.3f, rows %.3f, levels %.3f, radius %.1f, planned %.0f mm2, "
+                "%.2f s; %d gouges (worst %.4f), %d collisions\n",
+                tool.id.c_str(), r.path.size(), r.stepover_mm, r.raster_stepover_mm, r.height_step_mm,
+                r.least_radius_mm, r.planned_area_mm2, r.seconds, report.gouges, report.worst_gouge_mm,
+                report.collisions);
+    EXPECT_GT(r.path.size(), 50u);
+    EXPECT_EQ(report.gouges, 0) << tool.id;
+    EXPECT_EQ(report.collisions, 0) << tool.id;
+    if (tool.type != ToolType::Ball) continue;
+    // The concave radius (12 mm, the B-rep's) tightens the spacing below the flat's.
+    EXPECT_NEAR(r.least_radius_mm, -12, 1e-6);
+    const double pitch = scallopStepover(3, options.scallop, -12) / 20;
+    // The pocket's floor (raster) and its side (waterline): the sphere's points at polar angles from its bottom.
+    for (const auto& [polar, what] : {std::pair{12.0, "raster"}, std::pair{62.0, "waterline"}}) {
+      const Vec3 down = onDome(180 - polar, 35);  // from the sphere's centre to the pocket's surface
+      const WindowScallop w = measureScallop(part.mesh, r.path, tool, Vec3(0, 0, 24) + 12 * down, -down, 0.6, pitch);
+      std::printf("pocket scallop at polar %.0f deg (%s): %.4f mm (target %.3f), deepest cut %.4f, %d of %d rays\n",
+                  polar, what, w.max_mm, options.scallop, w.deepest_mm, w.reached, w.rays);
+      EXPECT_GT(w.reached, w.rays * 9 / 10);
+      EXPECT_LE(w.max_mm, 1.1 * options.scallop) << what;
+    }
+  }
 }

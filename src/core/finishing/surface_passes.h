@@ -75,7 +75,9 @@ struct Context {
   ClearanceMap body;           // shank and holder vs the part grown by skin + holder margin: cut points clear it
   ClearanceMap safe;           // that and the cutter vs the part grown by the skin: the tool above it is free
   double gouge_tolerance = 0.0025;  // mm a chord may pass below the CL surface (into the part)
-  double leave_tolerance = 0.0005;  // mm a chord may pass above it (material left, on top of the scallop)
+  double leave_tolerance = 0.0005;  // mm a raster chord may pass above it (material left, on top of the scallop)
+  double contour_leave = 0.0025;    // mm a waterline chord may pass outside the contour (likewise)
+  double crossing_precision = 0.000625;  // mm: contour points lie this close outside the contour
   double sample_step = 0.3;    // mm
   double min_step = 0.001;     // mm: subdivision stops here (a cliff of the CL surface)
   double body_tolerance = 1e-6;  // mm a cut point may lie below the body clearance (rounding)
@@ -98,9 +100,15 @@ struct Pass {
   bool closed = false;  // a loop: the last point joins the first
 };
 
-// Of the chordal tolerance, the share a chord may keep above the CL surface (leaving material, which adds to the
-// scallop): the rest of the half each way is the gouge side's, which the part's 0.01 mm tolerance absorbs.
-constexpr double kLeaveShare = 0.1;
+// The chordal tolerance splits into half below the CL surface (a gouge, which the part's 0.01 mm tolerance absorbs)
+// and a share above it (material left, on top of the scallop, so the passes' spacing is taken for the scallop less
+// that share). Raster points are cheap to add: their chords keep kRasterLeaveShare. Waterline points cost a search
+// across the contour each: their chords keep half, and contour points lie within kCrossingShare outside it; the
+// levels' spacing is taken for the scallop less both (a waterline contour has ~sqrt(5) times fewer points for ~10 %
+// more levels than at the raster's share).
+constexpr double kRasterLeaveShare = 0.1;
+constexpr double kContourLeaveShare = 0.5;
+constexpr double kCrossingShare = 0.125;
 
 // Appends the CL points after `a` up to `b` (both on the CL surface) along their x-y segment: samples at most
 // ctx.sample_step apart, each interval halved by a drop until the CL surface keeps within the gouge and leave

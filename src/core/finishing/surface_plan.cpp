@@ -58,6 +58,8 @@ constexpr double kCreaseOfRadius = 0.5;
 // Concave bends wider than this (times the tool's effective radius) count as flat: the spacing they ask for is within
 // 0.1 % of the flat's.
 constexpr double kFlatOfRadius = 1000;
+// A mesh's concave creases never take the spacing below this share of the smooth surface's (see `crease`).
+constexpr double kMinCreaseShare = 0.5;
 // Concave radii below the tool's (times this) are hollows the tool cannot follow.
 constexpr double kFollowableConcave = 1.001;
 // Second derivatives of the CL map span this many nodes each way: a mesh's facets make the CL surface a chain of
@@ -169,8 +171,13 @@ Plan planPasses(const Part& part, const std::vector<int>& faces_in, const SetupF
   ctx.cutter = plan.cutter.get();
   ctx.floor = bounds.min.z() - 2 * R - 1;
   ctx.grid = gridOver(window, pitch);
+  // What chords may leave above the CL surface comes out of the scallop: never more than a third of it each.
   ctx.gouge_tolerance = 0.5 * o.chordal_tolerance;
-  ctx.leave_tolerance = kLeaveShare * o.chordal_tolerance;
+  ctx.leave_tolerance = std::min(kRasterLeaveShare * o.chordal_tolerance, o.scallop / 3);
+  ctx.contour_leave = std::min(kContourLeaveShare * o.chordal_tolerance, o.scallop / 3);
+  ctx.crossing_precision = std::min(kCrossingShare * o.chordal_tolerance, o.scallop / 12);
+  const double row_scallop = o.scallop - ctx.leave_tolerance;
+  const double level_scallop = o.scallop - ctx.contour_leave - ctx.crossing_precision;
   ctx.sample_step = o.sample_step > 0 ? o.sample_step : 0.1 * R;
   ctx.min_step = 0.25 * o.chordal_tolerance;
   ctx.feed_link = o.feed_link_mm > 0 ? o.feed_link_mm : tool.diameter;
@@ -269,18 +276,45 @@ Plan planPasses(const Part& part, const std::vector<int>& faces_in, const SetupF
         const double centre = 1 / kappa;
         return centre >= kCreaseOfRadius * r && centre < kFlatOfRadius * r ? centre + r : kInf;
       };
-      auto centreSpacing = [&](double radius) {
-        return radius > kFollowableConcave * r && !std::isinf(radius) ? scallopStepover(r, o.scallop, -radius) : spacing;
+      auto centreSpacing = [&](double radius, double scallop) {
+        const bool concave = radius > kFollowableConcave * r && !std::isinf(radius);
+        return r > 0 ? scallopStepover(r, scallop, concave ? -radius : kInf) : spacing;
+      };
+      // The mesh's own concave creases under the tool (a tessellation's facets, a mesh part's triangles): the contact
+      // triangle's concave edges, each bending the section across the passes by its dihedral angle times how far the
+      // edge runs along them. A crease of angle theta midway between two passes raises their cusp by
+      // c theta / 4 + r theta^2 / 8 (the two balls sit on planes meeting at it): the spacing c solves
+      // c^2 P / (8 r (P - r)) + c theta / 4 + r theta^2 / 8 = h to first order, never below kMinCreaseShare of the
+      // smooth spacing. Only edges the adjacency calls smooth count: sharper ones are features of the part (a fillet's
+      // or a corner's), where what the tool leaves is rest finishing's.
+      auto crease = [&](double dx, double dy) {
+        const int t = ctx.contact[n];
+        double worst = 0;
+        for (int e = 0; e < 3; ++e) {
+          const double angle = part.adjacency.dihedral[t][e];
+          if (angle >= 0 || part.adjacency.klass[t][e] != EdgeClass::Smooth) continue;
+          const Vec3 dir = (v[tris[t][(e + 1) % 3]] - v[tris[t][e]]).normalized();
+          worst = std::max(worst, -angle * std::abs(dir.x() * dx + dir.y() * dy));
+        }
+        return worst;
+      };
+      auto withCreases = [&](double smooth, double radius, double theta, double scallop) {
+        if (!(theta > 0)) return smooth;
+        const double A = std::isinf(radius) ? 1 / (8 * r) : radius / (8 * r * (radius - r));
+        const double B = 0.25 * theta, C = 0.125 * r * theta * theta - scallop;
+        const double c = C < 0 ? (-B + std::sqrt(B * B - 4 * A * C)) / (2 * A) : 0;
+        return std::clamp(c, kMinCreaseShare * smooth, smooth);
       };
       const double across = std::abs(d.y), up = ctx.slope[n];
       if (ctx.raster[n]) {
         const double p = concave(d.yy, across);
         if (r > 0) {
           least = std::min(least, p);
-          ctx.row_spacing[n] = centreSpacing(p) * std::cos(std::atan(across));
+          ctx.row_spacing[n] =
+              withCreases(centreSpacing(p, row_scallop), p, crease(1, 0), row_scallop) * std::cos(std::atan(across));
         } else {  // a flat end mill's staircase: h = s sin(alpha) across a slope
           const double sin_a = std::sin(std::atan(across));
-          ctx.row_spacing[n] = sin_a > 0 ? std::min(spacing, o.scallop / sin_a) : spacing;
+          ctx.row_spacing[n] = sin_a > 0 ? std::min(spacing, row_scallop / sin_a) : spacing;
         }
       }
       if (ctx.waterline[n]) {
@@ -288,9 +322,10 @@ Plan planPasses(const Part& part, const std::vector<int>& faces_in, const SetupF
         const double p = concave(gx * gx * d.xx + 2 * gx * gy * d.xy + gy * gy * d.yy, up);
         if (r > 0) {
           least = std::min(least, p);
-          ctx.level_spacing[n] = centreSpacing(p) * std::sin(std::atan(up));
+          ctx.level_spacing[n] =
+              withCreases(centreSpacing(p, level_scallop), p, crease(-gy, gx), level_scallop) * std::sin(std::atan(up));
         } else {  // h = dz cos(alpha) down a slope
-          ctx.level_spacing[n] = std::min(R, o.scallop / std::cos(std::atan(up)));
+          ctx.level_spacing[n] = std::min(R, level_scallop / std::cos(std::atan(up)));
         }
       }
     }

@@ -151,7 +151,7 @@ struct Level {
     const double sign = high(m) ? -1 : 1;  // towards the contour: away from the high side (the right) when on it
     const double ux = sign * dy, uy = -sign * dx;
     // The chord's middle on the high side gouges, on the low side leaves material.
-    const double near = high(m) ? ctx.gouge_tolerance : ctx.leave_tolerance;
+    const double near = high(m) ? ctx.gouge_tolerance : ctx.contour_leave;
     const Vec3 probe = at(m.x() + near * ux, m.y() + near * uy);
     if (high(probe) != high(m)) return;  // the contour is within half the tolerance of the chord here
     Vec3 c;
@@ -231,7 +231,7 @@ void keepClear(const Context& ctx, Pass contour, std::vector<Pass>& out) {
 }
 
 std::vector<Pass> contoursAt(const Context& ctx, const std::vector<Cell>& cells, double z, EdgeSamples& samples) {
-  Level level{ctx, z, ctx.leave_tolerance, samples, {}};
+  Level level{ctx, z, ctx.crossing_precision, samples, {}};
   std::unordered_map<long, long> next;     // edge id -> edge id of the segment leaving it
   std::unordered_map<long, Cell> where;    // edge id -> a cell it belongs to (to compute its crossing)
   std::unordered_map<long, int> edge_of;   // edge id -> its index within that cell
@@ -296,10 +296,10 @@ std::vector<Pass> contoursAt(const Context& ctx, const std::vector<Cell>& cells,
       // looked at.
       const double len = std::hypot(raw[k].x() - raw[k - 1].x(), raw[k].y() - raw[k - 1].y());
       const double sag = 0.25 * len * std::max(turn[k - 1], turn[k]);
-      if (sag > std::min(ctx.gouge_tolerance, ctx.leave_tolerance)) level.refine(raw[k - 1], raw[k], contour.points, 0);
+      if (sag > std::min(ctx.gouge_tolerance, ctx.contour_leave)) level.refine(raw[k - 1], raw[k], contour.points, 0);
       contour.points.push_back(raw[k]);
     }
-    contour.points = thin(contour.points, ctx.gouge_tolerance, ctx.leave_tolerance, true);
+    contour.points = thin(contour.points, ctx.gouge_tolerance, ctx.contour_leave, true);
     keepClear(ctx, std::move(contour), out);
   };
   std::vector<long> starts;
