@@ -21,12 +21,18 @@
 // slope alpha across them are s / cos(alpha) apart along the surface, so a node's row spacing is its centre spacing
 // times cos alpha; waterline levels the centre spacing times sin of the node's slope. Each row is placed at the least
 // spacing of the nodes between it and the previous one, each level likewise: tight spots tighten only the rows and
-// levels that cross them. The tool's effective radius: the ball's; a bull's corner radius (its flat bottom only ever
-// lowers the cusp); a flat end mill leaves a staircase, h = s sin(alpha) across a slope, h = dz cos(alpha) down one.
+// levels that cross them. A tessellated face is a chain of facets: a concave crease of angle theta between two passes
+// raises their cusp by c theta / 4 + R theta^2 / 8 (the balls sit on planes meeting at it), which the node's spacing
+// also takes, from the dihedral angles of its contact triangle's smooth edges (a mesh with coarse concave facets gets
+// closer passes; load STEP parts with a chordal tolerance well below the scallop). The tool's effective radius: the
+// ball's; a bull's corner radius (its flat bottom only ever lowers the cusp); a flat end mill leaves a staircase,
+// h = s sin(alpha) across a slope, h = dz cos(alpha) down one.
 //
 // Points along a pass start sample_step apart and are subdivided by extra drops wherever the CL surface leaves the chord
-// by more than half the chordal tolerance, then thinned where the chord keeps within the other half (a flat stretch is
-// one move). Waterline contours likewise, laterally.
+// by more than the chordal tolerance allows, then thinned where the chord keeps within it (a flat stretch is one move).
+// Half the tolerance may lie below the CL surface (a gouge that deep, within the part's tolerance); what a chord may
+// leave above it adds to the cusp, so it is kept small and the spacing is taken for the scallop less it (surface_
+// passes.h: kRasterLeaveShare, kContourLeaveShare). Waterline contours likewise, laterally.
 //
 // 5-axis: a ball's cutting sphere does not depend on its axis, so the ball centres come from a drop along the face's
 // own direction (the centre of its thinned visibility cone, thesis 4.1.3) and the axis at each point is the setup

@@ -72,6 +72,8 @@ std::vector<std::vector<Pass>> rasterRows(const Context& ctx, double& mean_step)
     for (int i = 0; i < g.nx; ++i)
       if (ctx.raster[g.node(i, j)]) row_min[j] = std::min(row_min[j], ctx.row_spacing[g.node(i, j)]);
   std::vector<double> ys;
+  double spanned = 0;  // y covered by rows within stretches, for the mean spacing
+  int gaps = 0;
   const double half = 0.5 * g.pitch;
   for (int j = 0; j < g.ny;) {
     if (std::isinf(row_min[j])) {
@@ -89,12 +91,14 @@ std::vector<std::vector<Pass>> rasterRows(const Context& ctx, double& mean_step)
       if (y >= yb) break;
       double step = kInf;
       for (int k = g.nearestJ(y); k <= end && g.y(k) - half <= y + step; ++k) step = std::min(step, row_min[k]);
-      y = std::min(yb, y + step);
+      const double next = std::min(yb, y + step);
+      spanned += next - y;
+      ++gaps;
+      y = next;
     }
     j = end + 1;
   }
-  mean_step = 0;
-  for (std::size_t k = 1; k < ys.size(); ++k) mean_step += (ys[k] - ys[k - 1]) / (ys.size() - 1);
+  mean_step = gaps > 0 ? spanned / gaps : 0;
   std::vector<std::vector<Pass>> out(ys.size());
   parallelFor(static_cast<int>(ys.size()), ctx.threads, [&](int k) { out[k] = rasterRow(ctx, ys[k]); });
   return out;

@@ -90,7 +90,6 @@ struct Context {
     return cutter->drop(x, y, floor);
   }
   bool inRegion(double x, double y) const { return region[grid.nearest(x, y)] != 0; }
-  bool inRaster(double x, double y) const { return raster[grid.nearest(x, y)] != 0; }
   bool bodyClear(const Vec3& p) const { return p.z() >= body.at(p.x(), p.y()) - body_tolerance; }
 };
 

@@ -117,6 +117,203 @@ void dilate(const Context& ctx, std::vector<std::uint8_t>& mask, int cells) {
   }
 }
 
+// The x-y offset from a point of a triangle (unit normal n, facing the tool) to the tool's centre when the tool
+// touches the triangle there: R' along the normal's horizontal direction and r along the normal (just off a wall).
+Eigen::Vector2d contactOffset(const Vec3& n, double Rp, double r) {
+  const double nxy = std::hypot(n.x(), n.y());
+  const double ux = nxy > 1e-12 ? n.x() / nxy : 0, uy = nxy > 1e-12 ? n.y() / nxy : 0;
+  return Eigen::Vector2d((Rp + kOffWall) * ux + r * n.x(), (Rp + kOffWall) * uy + r * n.y());
+}
+
+// The CL map at the nodes within `grow` of a facing face triangle's box (NaN and no contact elsewhere).
+void computeHeights(Context& ctx, const std::vector<Vec3>& v, const std::vector<Triangle>& tris,
+                    const std::vector<int>& facing, double grow) {
+  const Grid& g = ctx.grid;
+  std::vector<char> candidate(g.size(), 0);
+  for (int t : facing) {
+    double lo[2] = {kInf, kInf}, hi[2] = {-kInf, -kInf};
+    for (int k = 0; k < 3; ++k)
+      for (int a = 0; a < 2; ++a) lo[a] = std::min(lo[a], v[tris[t][k]][a]), hi[a] = std::max(hi[a], v[tris[t][k]][a]);
+    for (int j = g.nearestJ(lo[1] - grow); j <= g.nearestJ(hi[1] + grow); ++j)
+      for (int i = g.nearestI(lo[0] - grow); i <= g.nearestI(hi[0] + grow); ++i) candidate[g.node(i, j)] = 1;
+  }
+  ctx.height.assign(g.size(), std::nan(""));
+  ctx.contact.assign(g.size(), -1);
+  parallelFor(g.ny, ctx.threads, [&](int j) {
+    long count = 0;
+    for (int i = 0; i < g.nx; ++i) {
+      const int n = g.node(i, j);
+      if (!candidate[n]) continue;
+      int triangle;
+      ctx.height[n] = ctx.cutter->drop(g.x(i), g.y(j), ctx.floor, &triangle);
+      ctx.contact[n] = triangle;
+      ++count;
+    }
+    ctx.drops.fetch_add(count, std::memory_order_relaxed);
+  });
+}
+
+// The region: nodes touching a face triangle, and the nodes where a face triangle's facet contact lies (the triangle
+// shifted by the tool's contact offset) unless something higher holds the tool there; grown by the margin.
+void markRegion(Context& ctx, const std::vector<Vec3>& v, const std::vector<Triangle>& tris,
+                const std::vector<int>& facing, const std::vector<char>& in_face, double Rp, double r, double margin) {
+  const Grid& g = ctx.grid;
+  ctx.region.assign(g.size(), 0);
+  for (std::size_t n = 0; n < g.size(); ++n) ctx.region[n] = ctx.contact[n] >= 0 && in_face[ctx.contact[n]];
+  const double near = 0.7072 * g.pitch;  // every point lies within this of its nearest node
+  for (int t : facing) {
+    const Eigen::Vector2d off = contactOffset(unitNormal(v, tris[t]), Rp, r);
+    double q[3][2], zmax = -kInf, lo[2] = {kInf, kInf}, hi[2] = {-kInf, -kInf};
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& p = v[tris[t][k]];
+      q[k][0] = p.x() + off.x();
+      q[k][1] = p.y() + off.y();
+      zmax = std::max(zmax, p.z());
+      for (int a = 0; a < 2; ++a) lo[a] = std::min(lo[a], q[k][a]), hi[a] = std::max(hi[a], q[k][a]);
+    }
+    for (int j = g.nearestJ(lo[1] - near); j <= g.nearestJ(hi[1] + near); ++j)
+      for (int i = g.nearestI(lo[0] - near); i <= g.nearestI(hi[0] + near); ++i) {
+        const int n = g.node(i, j);
+        if (ctx.region[n] || ctx.contact[n] < 0 || ctx.height[n] > zmax + kReachTolerance) continue;
+        if (distanceToTriangle(q, g.x(i), g.y(j)) <= near) ctx.region[n] = 1;
+      }
+  }
+  dilate(ctx, ctx.region, static_cast<int>(std::ceil(margin / g.pitch)));
+}
+
+// The spacing each node of the region asks for, from the scallop, the slope and the concave radius under it.
+struct Spacings {
+  const Part& part;
+  const std::vector<Vec3>& v;      // the part's vertices in the frame
+  std::vector<double> face_radius; // faceConcaveRadii
+  double R = 0, r = 0;             // the cutting radius and the effective (corner) radius
+  double flat = 0;                 // the centre spacing on a flat
+  double row_scallop = 0, level_scallop = 0;  // the scallop less what chords may leave
+
+  // The concave part radius under the node's contact along a section bending by `bend` (a second derivative of the
+  // CL map) at `slope`: the face's B-rep radius where it has one, else 1 / curvature + r unless that is a crease (the
+  // tool against two sides of a hollow it does not fit) or as good as flat; infinity for convex and flat.
+  double concave(int contact, double bend, double slope) const {
+    const double fr = face_radius[part.triangle_face[contact]];
+    if (fr > kFollowableConcave * r && !std::isinf(fr)) return fr;
+    const double kappa = bend / std::pow(1 + slope * slope, 1.5);
+    if (!(kappa > 0) || r <= 0) return kInf;
+    const double centre = 1 / kappa;
+    return centre >= kCreaseOfRadius * r && centre < kFlatOfRadius * r ? centre + r : kInf;
+  }
+
+  double centreSpacing(double radius, double scallop) const {
+    const bool concave = radius > kFollowableConcave * r && !std::isinf(radius);
+    return r > 0 ? scallopStepover(r, scallop, concave ? -radius : kInf) : flat;
+  }
+
+  // The mesh's own concave creases under the tool (a tessellation's facets, a mesh part's triangles): the contact
+  // triangle's concave edges, each bending the section across the passes, which run along (dx, dy), by its dihedral
+  // angle times how far the edge runs along them. Only edges the adjacency calls smooth count: sharper ones are
+  // features of the part (a fillet's or a corner's), where what the tool leaves is rest finishing's.
+  double crease(int t, double dx, double dy) const {
+    if (part.adjacency.dihedral.size() != part.mesh.triangles.size()) return 0;
+    double worst = 0;
+    for (int e = 0; e < 3; ++e) {
+      const double angle = part.adjacency.dihedral[t][e];
+      if (angle >= 0 || part.adjacency.klass[t][e] != EdgeClass::Smooth) continue;
+      const Triangle& tri = part.mesh.triangles[t];
+      const Vec3 dir = (v[tri[(e + 1) % 3]] - v[tri[e]]).normalized();
+      worst = std::max(worst, -angle * std::abs(dir.x() * dx + dir.y() * dy));
+    }
+    return worst;
+  }
+
+  // A crease of angle theta midway between two passes raises their cusp by c theta / 4 + r theta^2 / 8 (the two balls
+  // sit on planes meeting at it): the spacing c solves c^2 P / (8 r (P - r)) + c theta / 4 + r theta^2 / 8 = h to
+  // first order, never below kMinCreaseShare of the smooth spacing.
+  double withCreases(double smooth, double radius, double theta, double scallop) const {
+    if (!(theta > 0)) return smooth;
+    const double A = std::isinf(radius) ? 1 / (8 * r) : radius / (8 * r * (radius - r));
+    const double B = 0.25 * theta, C = 0.125 * r * theta * theta - scallop;
+    const double c = C < 0 ? (-B + std::sqrt(B * B - 4 * A * C)) / (2 * A) : 0;
+    return std::clamp(c, kMinCreaseShare * smooth, smooth);
+  }
+
+  // Raster rows run along x: the section across them is along y. Slope alpha across them spreads them on the surface
+  // by 1 / cos alpha. A flat end mill's staircase: h = s sin(alpha).
+  double row(int contact, const Derivatives& d, double& radius) const {
+    const double across = std::abs(d.y);
+    if (r <= 0) {
+      const double sin_a = std::sin(std::atan(across));
+      return sin_a > 0 ? std::min(flat, row_scallop / sin_a) : flat;
+    }
+    radius = concave(contact, d.yy, across);
+    return withCreases(centreSpacing(radius, row_scallop), radius, crease(contact, 1, 0), row_scallop) *
+           std::cos(std::atan(across));
+  }
+
+  // Waterline levels: the section up the slope (the gradient); levels a centre spacing apart on a slope alpha are
+  // that times sin alpha apart in height. A flat end mill's staircase: h = dz cos(alpha).
+  double level(int contact, const Derivatives& d, double& radius) const {
+    const double up = std::hypot(d.x, d.y);
+    if (r <= 0) return std::min(R, level_scallop / std::cos(std::atan(up)));
+    const double gx = d.x / up, gy = d.y / up;
+    radius = concave(contact, gx * gx * d.xx + 2 * gx * gy * d.xy + gy * gy * d.yy, up);
+    return withCreases(centreSpacing(radius, level_scallop), radius, crease(contact, -gy, gx), level_scallop) *
+           std::sin(std::atan(up));
+  }
+};
+
+// Slopes of the CL surface; the steep and shallow parts, overlapping by kSteepOverlapDeg each way; each node's
+// spacing. Nodes where the shank or holder cannot clear are left out of both parts: no passes are planned over them.
+// Returns the least concave radius that set a spacing (infinity: none).
+double splitRegion(Context& ctx, const Spacings& spacings, double steep_angle_deg) {
+  const Grid& g = ctx.grid;
+  ctx.slope.assign(g.size(), 0);
+  ctx.raster.assign(g.size(), 0);
+  ctx.waterline.assign(g.size(), 0);
+  ctx.row_spacing.assign(g.size(), kInf);
+  ctx.level_spacing.assign(g.size(), kInf);
+  const double tan_shallow = std::tan((steep_angle_deg + kSteepOverlapDeg) * M_PI / 180);
+  const double tan_steep = std::tan((steep_angle_deg - kSteepOverlapDeg) * M_PI / 180);
+  double least = kInf;
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      const int n = g.node(i, j);
+      if (!ctx.region[n] || !ctx.bodyClear(Vec3(g.x(i), g.y(j), ctx.height[n]))) continue;
+      const Derivatives d = derivatives(ctx, i, j);
+      ctx.slope[n] = std::hypot(d.x, d.y);
+      ctx.raster[n] = ctx.slope[n] < tan_shallow;
+      ctx.waterline[n] = ctx.slope[n] > tan_steep;
+      double radius = kInf;
+      if (ctx.raster[n]) ctx.row_spacing[n] = spacings.row(ctx.contact[n], d, radius), least = std::min(least, radius);
+      if (ctx.waterline[n])
+        ctx.level_spacing[n] = spacings.level(ctx.contact[n], d, radius), least = std::min(least, radius);
+    }
+  return least;
+}
+
+// What the planner believes: a facing face triangle is reached when the tool can come to its centroid (its CL point
+// there is no higher than the contact) within the region, and cut when the body clears there too.
+void believedAreas(const Context& ctx, const Part& part, const std::vector<Vec3>& v, const std::vector<int>& facing,
+                   double Rp, double r, Plan& plan, SurfaceFinishingResult& result) {
+  for (int t : facing) {
+    const Triangle& tri = part.mesh.triangles[t];
+    const double area = triangleArea(part.mesh, t);
+    const Vec3 nrm = unitNormal(v, tri);
+    const Vec3 c = (v[tri[0]] + v[tri[1]] + v[tri[2]]) / 3;
+    const Eigen::Vector2d q = c.head<2>() + contactOffset(nrm, Rp, r);
+    const double expected = c.z() - r + r * nrm.z();
+    const double z = ctx.drop(q.x(), q.y());
+    if (z > expected + kReachTolerance || !ctx.inRegion(q.x(), q.y()))
+      result.unreached_area_mm2 += area;
+    else if (!ctx.bodyClear(Vec3(q.x(), q.y(), z)))
+      result.skipped_area_mm2 += area;
+    else
+      result.planned_area_mm2 += area, plan.planned.push_back(t);
+  }
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 }  // namespace
 
 Plan planPasses(const Part& part, const std::vector<int>& faces_in, const SetupFrame& frame, const Tool& tool,
@@ -135,13 +332,13 @@ Plan planPasses(const Part& part, const std::vector<int>& faces_in, const SetupF
   const double R = 0.5 * tool.diameter, r = plan.cutter->cornerRadius(), Rp = R - r;
   const Box bounds = plan.cutter->bounds();
   plan.top = bounds.max.z();
+  plan.short_link = o.short_link_mm > 0 ? o.short_link_mm : 10 * tool.diameter;
 
   // The spacing of the cutter centres on a flat (a flat end mill: passes overlapping by a fifth).
   const double spacing = r > 0 ? scallopStepover(r, o.scallop, kInf) : kFlatStepoverOfDiameter * tool.diameter;
   result.stepover_mm = spacing;
   const double pitch = o.map_pitch > 0 ? o.map_pitch : 0.25 * R;
   const double margin = std::max(o.region_margin > 0 ? o.region_margin : spacing, pitch);
-  const int threads = threadCount(o.threads);
 
   // The faces' triangles, and those facing the direction (the window of the map).
   std::vector<char> face_member(part.faces.size(), 0), in_face(tris.size(), 0);
@@ -159,7 +356,7 @@ Plan planPasses(const Part& part, const std::vector<int>& faces_in, const SetupF
     for (int k = 0; k < 3; ++k) window.extend(v[tris[t][k]]);
   }
   if (facing.empty()) {
-    result.seconds_map = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    result.seconds_map = secondsSince(start);
     return plan;
   }
   const double reach = R + margin + 2 * pitch;
@@ -176,198 +373,38 @@ Plan planPasses(const Part& part, const std::vector<int>& faces_in, const SetupF
   ctx.leave_tolerance = std::min(kRasterLeaveShare * o.chordal_tolerance, o.scallop / 3);
   ctx.contour_leave = std::min(kContourLeaveShare * o.chordal_tolerance, o.scallop / 3);
   ctx.crossing_precision = std::min(kCrossingShare * o.chordal_tolerance, o.scallop / 12);
-  const double row_scallop = o.scallop - ctx.leave_tolerance;
-  const double level_scallop = o.scallop - ctx.contour_leave - ctx.crossing_precision;
   ctx.sample_step = o.sample_step > 0 ? o.sample_step : 0.1 * R;
   ctx.min_step = 0.25 * o.chordal_tolerance;
   ctx.feed_link = o.feed_link_mm > 0 ? o.feed_link_mm : tool.diameter;
-  ctx.threads = threads;
-  const Grid& g = ctx.grid;
+  ctx.threads = threadCount(o.threads);
 
-  // The CL map near the faces: nodes within the tool's radius and the margin of a facing face triangle.
-  std::vector<char> candidate(g.size(), 0);
-  for (int t : facing) {
-    double lo[2] = {kInf, kInf}, hi[2] = {-kInf, -kInf};
-    for (int k = 0; k < 3; ++k)
-      for (int a = 0; a < 2; ++a) lo[a] = std::min(lo[a], v[tris[t][k]][a]), hi[a] = std::max(hi[a], v[tris[t][k]][a]);
-    const double grow = R + margin + pitch;
-    for (int j = g.nearestJ(lo[1] - grow); j <= g.nearestJ(hi[1] + grow); ++j)
-      for (int i = g.nearestI(lo[0] - grow); i <= g.nearestI(hi[0] + grow); ++i) candidate[g.node(i, j)] = 1;
-  }
-  ctx.height.assign(g.size(), std::nan(""));
-  ctx.contact.assign(g.size(), -1);
-  parallelFor(g.ny, threads, [&](int j) {
-    long count = 0;
-    for (int i = 0; i < g.nx; ++i) {
-      const int n = g.node(i, j);
-      if (!candidate[n]) continue;
-      int triangle;
-      ctx.height[n] = ctx.cutter->drop(g.x(i), g.y(j), ctx.floor, &triangle);
-      ctx.contact[n] = triangle;
-      ++count;
-    }
-    ctx.drops.fetch_add(count, std::memory_order_relaxed);
-  });
-
-  // The region: nodes touching a face triangle, and the nodes where a face triangle's facet contact lies (the triangle
-  // shifted by the tool's contact offset) unless something higher holds the tool there; grown by the margin.
-  ctx.region.assign(g.size(), 0);
-  for (std::size_t n = 0; n < g.size(); ++n) ctx.region[n] = ctx.contact[n] >= 0 && in_face[ctx.contact[n]];
-  const double near = 0.7072 * pitch;  // a node is within this of every point of its cell quarter
-  for (int t : facing) {
-    const Vec3 nrm = unitNormal(v, tris[t]);
-    const double nxy = std::hypot(nrm.x(), nrm.y());
-    const double ux = nxy > 1e-12 ? nrm.x() / nxy : 0, uy = nxy > 1e-12 ? nrm.y() / nxy : 0;
-    const double offx = (Rp + kOffWall) * ux + r * nrm.x(), offy = (Rp + kOffWall) * uy + r * nrm.y();
-    double q[3][2], zmax = -kInf, lo[2] = {kInf, kInf}, hi[2] = {-kInf, -kInf};
-    for (int k = 0; k < 3; ++k) {
-      const Vec3& p = v[tris[t][k]];
-      q[k][0] = p.x() + offx;
-      q[k][1] = p.y() + offy;
-      zmax = std::max(zmax, p.z());
-      for (int a = 0; a < 2; ++a) lo[a] = std::min(lo[a], q[k][a]), hi[a] = std::max(hi[a], q[k][a]);
-    }
-    for (int j = g.nearestJ(lo[1] - near); j <= g.nearestJ(hi[1] + near); ++j)
-      for (int i = g.nearestI(lo[0] - near); i <= g.nearestI(hi[0] + near); ++i) {
-        const int n = g.node(i, j);
-        if (ctx.region[n] || ctx.contact[n] < 0 || ctx.height[n] > zmax + kReachTolerance) continue;
-        if (distanceToTriangle(q, g.x(i), g.y(j)) <= near) ctx.region[n] = 1;
-      }
-  }
-  dilate(ctx, ctx.region, static_cast<int>(std::ceil(margin / pitch)));
-
-  // The body's clearance maps.
-  std::vector<Zone> cutter_zone{{R, 0, o.skin}};
-  if (body) {
-    Grid coarse = gridOver(window, kClearancePitchFactor * pitch);
-    ctx.body = clearanceMap(v, tris, coarse, bodyZones(tool, o.skin + o.holder_margin), threads, ctx.drops);
-    ctx.safe = clearanceMap(v, tris, coarse, cutter_zone, threads, ctx.drops);
+  computeHeights(ctx, v, tris, facing, R + margin + pitch);
+  markRegion(ctx, v, tris, facing, in_face, Rp, r, margin);
+  if (body) {  // the body's clearance maps
+    const Grid coarse = gridOver(window, kClearancePitchFactor * pitch);
+    ctx.body = clearanceMap(v, tris, coarse, bodyZones(tool, o.skin + o.holder_margin), ctx.threads, ctx.drops);
+    ctx.safe = clearanceMap(v, tris, coarse, {Zone{R, 0, o.skin}}, ctx.threads, ctx.drops);
     for (std::size_t n = 0; n < ctx.safe.tip.size(); ++n) ctx.safe.tip[n] = std::max(ctx.safe.tip[n], ctx.body.tip[n]);
   }
-  // Slopes of the CL surface; the steep and shallow parts, overlapping by kSteepOverlapDeg each way.
-  ctx.slope.assign(g.size(), 0);
-  ctx.raster.assign(g.size(), 0);
-  ctx.waterline.assign(g.size(), 0);
-  ctx.row_spacing.assign(g.size(), kInf);
-  ctx.level_spacing.assign(g.size(), kInf);
-  const double tan_shallow = std::tan((o.steep_angle_deg + kSteepOverlapDeg) * M_PI / 180);
-  const double tan_steep = std::tan((o.steep_angle_deg - kSteepOverlapDeg) * M_PI / 180);
-  const std::vector<double> face_radius = faceConcaveRadii(part);
-  double least = kInf;
-  for (int j = 0; j < g.ny; ++j)
-    for (int i = 0; i < g.nx; ++i) {
-      const int n = g.node(i, j);
-      if (!ctx.region[n]) continue;
-      // Nodes where the shank or holder cannot clear are not cut: no passes are planned over them.
-      if (!ctx.bodyClear(Vec3(g.x(i), g.y(j), ctx.height[n]))) continue;
-      const Derivatives d = derivatives(ctx, i, j);
-      ctx.slope[n] = std::hypot(d.x, d.y);
-      ctx.raster[n] = ctx.slope[n] < tan_shallow;
-      ctx.waterline[n] = ctx.slope[n] > tan_steep;
-      // The concave radius of the part across the passes (y) and up the slope (the gradient): the face's own where it
-      // has one, else from the CL surface's bend, unless that is a crease (the tool against two sides).
-      const double fr = face_radius[part.triangle_face[ctx.contact[n]]] > kFollowableConcave * r
-                            ? face_radius[part.triangle_face[ctx.contact[n]]]
-                            : kInf;
-      auto concave = [&](double bend, double slope) {
-        if (!std::isinf(fr)) return fr;
-        const double kappa = bend / std::pow(1 + slope * slope, 1.5);
-        if (!(kappa > 0) || r <= 0) return kInf;
-        const double centre = 1 / kappa;
-        return centre >= kCreaseOfRadius * r && centre < kFlatOfRadius * r ? centre + r : kInf;
-      };
-      auto centreSpacing = [&](double radius, double scallop) {
-        const bool concave = radius > kFollowableConcave * r && !std::isinf(radius);
-        return r > 0 ? scallopStepover(r, scallop, concave ? -radius : kInf) : spacing;
-      };
-      // The mesh's own concave creases under the tool (a tessellation's facets, a mesh part's triangles): the contact
-      // triangle's concave edges, each bending the section across the passes by its dihedral angle times how far the
-      // edge runs along them. A crease of angle theta midway between two passes raises their cusp by
-      // c theta / 4 + r theta^2 / 8 (the two balls sit on planes meeting at it): the spacing c solves
-      // c^2 P / (8 r (P - r)) + c theta / 4 + r theta^2 / 8 = h to first order, never below kMinCreaseShare of the
-      // smooth spacing. Only edges the adjacency calls smooth count: sharper ones are features of the part (a fillet's
-      // or a corner's), where what the tool leaves is rest finishing's.
-      auto crease = [&](double dx, double dy) {
-        const int t = ctx.contact[n];
-        double worst = 0;
-        for (int e = 0; e < 3; ++e) {
-          const double angle = part.adjacency.dihedral[t][e];
-          if (angle >= 0 || part.adjacency.klass[t][e] != EdgeClass::Smooth) continue;
-          const Vec3 dir = (v[tris[t][(e + 1) % 3]] - v[tris[t][e]]).normalized();
-          worst = std::max(worst, -angle * std::abs(dir.x() * dx + dir.y() * dy));
-        }
-        return worst;
-      };
-      auto withCreases = [&](double smooth, double radius, double theta, double scallop) {
-        if (!(theta > 0)) return smooth;
-        const double A = std::isinf(radius) ? 1 / (8 * r) : radius / (8 * r * (radius - r));
-        const double B = 0.25 * theta, C = 0.125 * r * theta * theta - scallop;
-        const double c = C < 0 ? (-B + std::sqrt(B * B - 4 * A * C)) / (2 * A) : 0;
-        return std::clamp(c, kMinCreaseShare * smooth, smooth);
-      };
-      const double across = std::abs(d.y), up = ctx.slope[n];
-      if (ctx.raster[n]) {
-        const double p = concave(d.yy, across);
-        if (r > 0) {
-          least = std::min(least, p);
-          ctx.row_spacing[n] =
-              withCreases(centreSpacing(p, row_scallop), p, crease(1, 0), row_scallop) * std::cos(std::atan(across));
-        } else {  // a flat end mill's staircase: h = s sin(alpha) across a slope
-          const double sin_a = std::sin(std::atan(across));
-          ctx.row_spacing[n] = sin_a > 0 ? std::min(spacing, row_scallop / sin_a) : spacing;
-        }
-      }
-      if (ctx.waterline[n]) {
-        const double gx = d.x / up, gy = d.y / up;
-        const double p = concave(gx * gx * d.xx + 2 * gx * gy * d.xy + gy * gy * d.yy, up);
-        if (r > 0) {
-          least = std::min(least, p);
-          ctx.level_spacing[n] =
-              withCreases(centreSpacing(p, level_scallop), p, crease(-gy, gx), level_scallop) * std::sin(std::atan(up));
-        } else {  // h = dz cos(alpha) down a slope
-          ctx.level_spacing[n] = std::min(R, level_scallop / std::cos(std::atan(up)));
-        }
-      }
-    }
+  const Spacings spacings{part, v, faceConcaveRadii(part), R, r, spacing, o.scallop - ctx.leave_tolerance,
+                          o.scallop - ctx.contour_leave - ctx.crossing_precision};
+  const double least = splitRegion(ctx, spacings, o.steep_angle_deg);
   result.least_radius_mm = std::isinf(least) ? kInf : -least;
-
   plan.clearance_z = plan.top + o.clearance;
   for (double z : ctx.safe.tip) plan.clearance_z = std::max(plan.clearance_z, z + o.link_margin);
-  plan.short_link = o.short_link_mm > 0 ? o.short_link_mm : 10 * tool.diameter;
-  result.seconds_map = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.seconds_map = secondsSince(start);
 
-  double mean_row = 0, mean_level = 0;
   auto clock = std::chrono::steady_clock::now();
-  const auto rows = rasterRows(ctx, mean_row);
-  result.seconds_raster = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock).count();
+  const auto rows = rasterRows(ctx, result.raster_stepover_mm);
+  result.seconds_raster = secondsSince(clock);
   clock = std::chrono::steady_clock::now();
-  const auto levels = waterlineLevels(ctx, mean_level);
-  result.seconds_waterline = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock).count();
-  result.raster_stepover_mm = mean_row;
-  result.height_step_mm = mean_level;
+  const auto levels = waterlineLevels(ctx, result.height_step_mm);
+  result.seconds_waterline = secondsSince(clock);
   plan.ordered = orderPasses(ctx, levels, rows);
   result.raster_passes = plan.ordered.raster_runs;
   result.waterline_levels = plan.ordered.levels;
   result.waterline_contours = plan.ordered.contours;
-
-  // What the planner believes: a facing face triangle is reached when the tool can come to its centroid (its CL
-  // point there is no higher than the contact), and cut when the body clears there too.
-  for (int t : facing) {
-    const double area = triangleArea(part.mesh, t);
-    const Vec3 nrm = unitNormal(v, tris[t]);
-    const double nxy = std::hypot(nrm.x(), nrm.y());
-    const double ux = nxy > 1e-12 ? nrm.x() / nxy : 0, uy = nxy > 1e-12 ? nrm.y() / nxy : 0;
-    const Vec3 c = (v[tris[t][0]] + v[tris[t][1]] + v[tris[t][2]]) / 3;
-    const double x = c.x() + (Rp + kOffWall) * ux + r * nrm.x(), y = c.y() + (Rp + kOffWall) * uy + r * nrm.y();
-    const double expected = c.z() - r + r * nrm.z();
-    const double z = ctx.drop(x, y);
-    if (z > expected + kReachTolerance || !ctx.inRegion(x, y))
-      result.unreached_area_mm2 += area;
-    else if (!ctx.bodyClear(Vec3(x, y, z)))
-      result.skipped_area_mm2 += area;
-    else
-      result.planned_area_mm2 += area, plan.planned.push_back(t);
-  }
+  believedAreas(ctx, part, v, facing, Rp, r, plan, result);
   return plan;
 }
 
