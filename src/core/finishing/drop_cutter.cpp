@@ -16,7 +16,7 @@ constexpr double kMinFacetNz = 1e-9;
 // Edges shorter than this in x-y (vertical ones) are left to their two vertices, where their maximum lies.
 constexpr double kMinEdgeLength = 1e-12;
 // Cell side in tool radii: a footprint meets 3 x 3 cells at most, and a cell holds few triangles of a wall.
-constexpr double kCellPerRadius = 0.5;
+constexpr double kCellPerRadius = 1.0;
 // The grid never has more cells than this (a tiny tool over a large mesh): the cell grows instead.
 constexpr double kMaxCells = 16e6;
 
