@@ -135,41 +135,40 @@ double AxisProbe::scan(const Vec3& tip, const Vec3& axis, double radius, double 
     }
   const double cell = level->cell;
   const Vec3 e1 = axis.unitOrthogonal(), e2 = axis.cross(e1);
-  // Cells within radius + half a step + the cell's half diagonal of samples half a cell apart along the stretch.
+  // Every cell whose centre lies within radius + its half diagonal of the stretch, once.
   thread_local std::vector<int> seen;
   thread_local int query = 0;
   if (seen.size() != static_cast<std::size_t>(mesh_.triangleCount())) seen.assign(mesh_.triangleCount(), 0), query = 0;
   if (++query == 0) std::fill(seen.begin(), seen.end(), 0), query = 1;
-  const double step = 0.5 * cell;
-  const double reach = radius + 0.5 * step + 0.8661 * cell;
+  const double reach = radius + 0.8661 * cell;
+  const Vec3 c0 = tip + w0 * axis, c1 = tip + w1 * axis;
+  int lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = std::max(0, static_cast<int>(std::floor((std::min(c0[a], c1[a]) - reach - box_.min[a]) / cell)));
+    hi[a] = std::min(level->n[a] - 1, static_cast<int>(std::floor((std::max(c0[a], c1[a]) + reach - box_.min[a]) / cell)));
+  }
   double best = -kInf;
-  const int samples = static_cast<int>(std::ceil((w1 - w0) / step));
-  for (int s = 0; s <= samples; ++s) {
-    const Vec3 c = tip + std::min(w1, w0 + s * step) * axis;
-    int lo[3], hi[3];
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = std::max(0, static_cast<int>(std::floor((c[a] - reach - box_.min[a]) / cell)));
-      hi[a] = std::min(level->n[a] - 1, static_cast<int>(std::floor((c[a] + reach - box_.min[a]) / cell)));
-    }
-    for (int k = lo[2]; k <= hi[2]; ++k)
-      for (int j = lo[1]; j <= hi[1]; ++j)
-        for (int i = lo[0]; i <= hi[0]; ++i) {
-          const int id = (k * level->n[1] + j) * level->n[0] + i;
-          for (int q = level->start[id]; q < level->start[id + 1]; ++q) {
-            const int t = level->items[q];
-            if (seen[t] == query) continue;
-            seen[t] = query;
-            const double h = triangleHighest(t, tip, e1, e2, axis, radius, std::max(from, best));
-            if (h > best) {
-              best = h;
-              if (first) {
-                hint->triangle = t;
-                return best;
-              }
+  for (int k = lo[2]; k <= hi[2]; ++k)
+    for (int j = lo[1]; j <= hi[1]; ++j)
+      for (int i = lo[0]; i <= hi[0]; ++i) {
+        const Vec3 centre = box_.min + cell * Vec3(i + 0.5, j + 0.5, k + 0.5);
+        const double w = std::clamp((centre - tip).dot(axis), w0, w1);
+        if ((centre - tip - w * axis).squaredNorm() > reach * reach) continue;
+        const int id = (k * level->n[1] + j) * level->n[0] + i;
+        for (int q = level->start[id]; q < level->start[id + 1]; ++q) {
+          const int t = level->items[q];
+          if (seen[t] == query) continue;
+          seen[t] = query;
+          const double h = triangleHighest(t, tip, e1, e2, axis, radius, std::max(from, best));
+          if (h > best) {
+            best = h;
+            if (first) {
+              hint->triangle = t;
+              return best;
             }
           }
         }
-  }
+      }
   return best;
 }
 

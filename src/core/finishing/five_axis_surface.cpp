@@ -84,7 +84,9 @@ std::vector<std::vector<Pose>> tiltPass(const Tilting& tilting, const std::vecto
   }
   std::vector<std::vector<Pose>> out(1);
   for (std::size_t i = 0; i < n; ++i) {
-    const bool ok = tilt[i] >= 0 && tilting.clear(centres[i], tilting.axis(tilt[i]), hints);
+    // A tilt the search found is clear already; one the smoothing raised was checked in its last round only if
+    // that round changed nothing after it.
+    const bool ok = tilt[i] >= 0 && (tilt[i] == need[i] || tilting.clear(centres[i], tilting.axis(tilt[i]), hints));
     if (!ok) {
       ++skipped;
       if (!out.back().empty()) out.emplace_back();
