@@ -1,0 +1,183 @@
+// The order of the passes (waterline top down, raster zig-zag), joins along the CL surface, and 3-axis links.
+#include <algorithm>
+#include <cmath>
+
+#include "surface_passes.h"
+
+namespace art2part::surface {
+
+namespace {
+
+double distanceXY(const Vec3& a, const Vec3& b) { return std::hypot(b.x() - a.x(), b.y() - a.y()); }
+
+// The CL points strictly between a and b along the CL surface, when the link is short, stays in the region and the
+// body clears all along it (true); false otherwise.
+bool surfaceLink(const Context& ctx, const Vec3& a, const Vec3& b, std::vector<Vec3>& between) {
+  if (distanceXY(a, b) > ctx.feed_link) return false;
+  std::vector<Vec3> link{a};
+  followSurface(ctx, a, b, link);
+  for (const Vec3& p : link)
+    if (!ctx.inRegion(p.x(), p.y()) || !ctx.bodyClear(p)) return false;
+  link = thin(link, ctx.gouge_tolerance, ctx.leave_tolerance, false);
+  between.assign(link.begin() + 1, link.end() - 1);
+  return true;
+}
+
+struct Builder {
+  const Context& ctx;
+  Ordered out;
+  Pass current;
+  bool have = false;
+  Vec3 position = Vec3::Zero();  // where the tool is: the end of the last pass
+
+  void emit() {
+    if (current.points.size() >= 2) out.passes.push_back(std::move(current));
+    current = Pass{};
+  }
+
+  // Appends a pass (already oriented): joined to the current one along the CL surface when allowed.
+  void append(const Pass& pass) {
+    if (pass.points.size() < 2) return;
+    if (!current.points.empty()) {
+      std::vector<Vec3> link;
+      if (surfaceLink(ctx, current.points.back(), pass.points.front(), link)) {
+        current.points.insert(current.points.end(), link.begin(), link.end());
+        current.points.insert(current.points.end(), pass.points.begin(), pass.points.end());
+        position = current.points.back();
+        return;
+      }
+      emit();
+    }
+    current = pass;
+    current.closed = false;
+    position = current.points.back();
+    have = true;
+  }
+};
+
+// A loop (last point = first) started at its point nearest to `from`.
+Pass rotatedLoop(const Pass& loop, const Vec3& from) {
+  const std::vector<Vec3>& p = loop.points;
+  std::size_t best = 0;
+  for (std::size_t k = 0; k + 1 < p.size(); ++k)
+    if (distanceXY(p[k], from) < distanceXY(p[best], from)) best = k;
+  Pass out;
+  out.points.assign(p.begin() + best, p.end() - 1);
+  out.points.insert(out.points.end(), p.begin(), p.begin() + best + 1);
+  return out;
+}
+
+}  // namespace
+
+Ordered orderPasses(const Context& ctx, const std::vector<std::vector<Pass>>& levels,
+                    const std::vector<std::vector<Pass>>& rows) {
+  Builder b{ctx, {}, {}, false, Vec3::Zero()};
+  // Waterline, top down; within a level the nearest contour next (loops from their nearest point).
+  for (const std::vector<Pass>& level : levels) {
+    if (!level.empty()) ++b.out.levels;
+    std::vector<bool> done(level.size(), false);
+    for (std::size_t n = 0; n < level.size(); ++n) {
+      std::size_t best = level.size();
+      double best_d = kInf;
+      for (std::size_t k = 0; k < level.size(); ++k) {
+        if (done[k]) continue;
+        double d = 0;
+        if (b.have) {
+          d = kInf;
+          if (level[k].closed)
+            for (const Vec3& p : level[k].points) d = std::min(d, distanceXY(p, b.position));
+          else
+            d = distanceXY(level[k].points.front(), b.position);
+        }
+        if (d < best_d) best_d = d, best = k;
+      }
+      done[best] = true;
+      ++b.out.contours;
+      b.append(level[best].closed && b.have ? rotatedLoop(level[best], b.position) : level[best]);
+    }
+  }
+  // Raster: from the lowest row with runs left, zig-zag upwards through the run nearest the last end.
+  std::vector<std::vector<bool>> done(rows.size());
+  for (std::size_t r = 0; r < rows.size(); ++r) done[r].assign(rows[r].size(), false);
+  auto oriented = [&](const Pass& run) {
+    if (!b.have || distanceXY(run.points.front(), b.position) <= distanceXY(run.points.back(), b.position)) return run;
+    Pass reversed = run;
+    std::reverse(reversed.points.begin(), reversed.points.end());
+    return reversed;
+  };
+  auto nearestRun = [&](std::size_t r, double limit) {
+    std::size_t best = rows[r].size();
+    double best_d = limit;
+    for (std::size_t k = 0; k < rows[r].size(); ++k) {
+      if (done[r][k]) continue;
+      const double d = b.have ? std::min(distanceXY(rows[r][k].points.front(), b.position),
+                                         distanceXY(rows[r][k].points.back(), b.position))
+                              : 0;
+      if (d <= best_d) best_d = d, best = k;
+      if (!b.have) break;  // the first run of the row
+    }
+    return best;
+  };
+  for (std::size_t start = 0; start < rows.size();) {
+    const std::size_t k = nearestRun(start, kInf);
+    if (k == rows[start].size()) {
+      ++start;
+      continue;
+    }
+    std::size_t r = start;
+    std::size_t run = k;
+    while (true) {
+      done[r][run] = true;
+      ++b.out.raster_runs;
+      b.append(oriented(rows[r][run]));
+      if (r + 1 >= rows.size()) break;
+      const std::size_t next = nearestRun(r + 1, ctx.feed_link);
+      if (next == rows[r + 1].size()) break;
+      ++r;
+      run = next;
+    }
+  }
+  b.emit();
+  return b.out;
+}
+
+Linked link3Axis(const Context& ctx, const std::vector<Pass>& passes, double short_link, double link_margin,
+                 double clearance_z) {
+  Linked out;
+  auto push = [&](const Vec3& p, MoveKind kind) { out.moves.push_back(Move{p, kind}); };
+  // The height above a point where the tool clears the part grown by the skin, and its body the grown part.
+  auto lift = [&](const Vec3& p) { return std::min(clearance_z, std::max(p.z(), ctx.safe.at(p.x(), p.y()) + link_margin)); };
+  auto above = [](const Vec3& p, double z) { return Vec3(p.x(), p.y(), z); };
+  for (std::size_t n = 0; n < passes.size(); ++n) {
+    const Vec3& s = passes[n].points.front();
+    const double ls = lift(s);
+    if (n == 0) {
+      push(above(s, clearance_z), MoveKind::Rapid);
+    } else {
+      const Vec3& e = passes[n - 1].points.back();
+      const double le = lift(e);
+      if (le > e.z()) push(above(e, le), MoveKind::Feed);
+      const double over = std::max({ctx.safe.along(e, s) + link_margin, le, ls});
+      if (distanceXY(e, s) <= short_link && over < clearance_z) {
+        if (over > le) push(above(e, over), MoveKind::Rapid);
+        push(above(s, over), MoveKind::Rapid);
+      } else {
+        push(above(e, clearance_z), MoveKind::Rapid);
+        push(above(s, clearance_z), MoveKind::Rapid);
+        ++out.retracts;
+      }
+    }
+    if (out.moves.back().p.z() > ls) push(above(s, ls), MoveKind::Rapid);
+    push(s, MoveKind::Feed);
+    for (std::size_t k = 1; k < passes[n].points.size(); ++k) push(passes[n].points[k], MoveKind::Feed);
+  }
+  if (!passes.empty()) {
+    const Vec3& e = passes.back().points.back();
+    const double le = lift(e);
+    if (le > e.z()) push(above(e, le), MoveKind::Feed);
+    push(above(e, clearance_z), MoveKind::Rapid);
+  }
+  return out;
+}
+
+}  // namespace art2part::surface
