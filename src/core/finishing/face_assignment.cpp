@@ -174,10 +174,26 @@ std::vector<FaceAssignment> assignFaces(const Part& part, const VisibilityResult
           surface_note = part.faces[f].type == SurfaceType::Plane
                              ? "square to no setup direction and parallel to none within reach: surface finishing"
                              : "its axis is no setup direction: surface finishing";
-        const FinishingKind kind =
-            options.mode == MachineMode::FiveAxis ? FinishingKind::Surface5Axis : FinishingKind::Surface3Axis;
-        for (std::size_t i = 0; i < scored.size() && i < kSurfaceChoices; ++i)
-          add(kind, scored[i].second, 0, scored[i].first >= 10.0, surface_note);
+        const bool five = options.mode == MachineMode::FiveAxis;
+        const FinishingKind kind = five ? FinishingKind::Surface5Axis : FinishingKind::Surface3Axis;
+        for (std::size_t i = 0; i < scored.size() && i < kSurfaceChoices; ++i) {
+          Offer o = scored[i].second;
+          // 5-axis: the face's own direction within the setup's tilt, the centre of its permissible cone (the
+          // direction that meets its every normal most squarely, thesis 4.1.3's thinning): the ball's centres come
+          // from a drop along it, the axis leans from the setup's towards it as the holder needs.
+          if (five) {
+            const double tilt = setups.max_tilt_deg * kPi / 180;
+            double best = leastDot(set, o.d);
+            for (int d = 0; d < directions.size(); ++d) {
+              const Vec3& v = directions.directions[d];
+              if (!coneHas(accessible, d) || std::acos(std::clamp(v.dot(setups.setups[o.setup].frame.z), -1.0, 1.0)) > tilt)
+                continue;
+              const double score = leastDot(set, v);
+              if (score > best + 1e-9) best = score, o.index = d, o.d = v;
+            }
+          }
+          add(kind, o, 0, scored[i].first >= 10.0, surface_note);
+        }
       }
     }
     if (a.choices.empty()) a.reason = "no permissible direction: no setup direction both admits the face and sees it";
