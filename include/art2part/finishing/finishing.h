@@ -97,6 +97,10 @@ struct FaceFinish {
                                    // no end mill makes); -1: not known
   std::string reason;              // Partial, Unmachinable: no permissible direction, radius below the smallest
                                    // tool, too deep for every tool, holder collision, ...
+  // The simulation's word, when the plan was verified: the most material it finds left on the face, over `samples`
+  // rays (0: none crossed it steeply enough to measure); the status follows it (planPart).
+  double simulated_left_mm = -1;
+  int samples = 0;
 };
 
 struct FinishingPlan {

@@ -69,6 +69,11 @@ PlanResult planPart(const Part& part, const ToolLibrary& library, const PlanOpti
 // The part with the holes a drill or a helix makes filled (holePlugs), for roughing: triangles appended in face -1.
 Part pluggedPart(const Part& part, const std::vector<Hole>& holes, const std::vector<HoleMachining>& methods);
 
+// The simulation's word on each face (its face_checks: the most material left on it): a face measured within 0.05 mm
+// (the area figure's tolerance) by at least 3 rays is finished whatever the planner believed, one measured beyond it is
+// partial; the reason says which. planPart calls it after verifying.
+void judgeFaces(const VerificationReport& report, FinishingPlan& finishing);
+
 // What a gouge may reach beyond the tolerance under each face (VerifyOptions::face_allowance): the concave faces'
 // chord sag (concaveSag) and, on a drilled bore, how far its drill is over the bore's diameter, radially (a drill
 // within HoleOptions::diameter_tolerance makes the hole).

@@ -79,6 +79,7 @@ nlohmann::json faceFinishJson(const Part& part, const FaceFinish& face) {
     j["direction"] = vec(face.direction);
   }
   if (face.radius_needed_mm >= 0) j["radius_needed_mm"] = face.radius_needed_mm;
+  if (face.samples > 0) j["simulated_left_mm"] = face.simulated_left_mm;
   if (!face.reason.empty()) j["reason"] = face.reason;
   return j;
 }

@@ -12,6 +12,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+constexpr double kFinishedLeftMm = 0.05;  // a face the simulation leaves within this of its surface is finished
+constexpr int kJudgedSamples = 3;         // ... when at least this many of its rays measure it
+
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 // The tools the path uses, in order of first use.
@@ -60,6 +63,28 @@ void combine(PlanResult& r) {
 }
 
 }  // namespace
+
+void judgeFaces(const VerificationReport& report, FinishingPlan& finishing) {
+  for (FaceFinish& face : finishing.faces) {
+    if (face.face < 0 || face.face >= static_cast<int>(report.face_checks.size())) continue;
+    const FaceVerification& check = report.face_checks[face.face];
+    face.simulated_left_mm = check.left_max_mm;
+    face.samples = check.samples;
+    if (check.samples < kJudgedSamples) continue;
+    std::ostringstream left;
+    left.precision(3);
+    left << check.left_max_mm;
+    if (check.left_max_mm <= kFinishedLeftMm && face.status != FaceStatus::Finished) {
+      face.reason = "finished by " + std::string(face.operations.empty() ? "its neighbours' operations" : "its operations") +
+                    " though the planner believed otherwise (the simulation leaves " + left.str() + " mm; it thought: " +
+                    face.reason + ")";
+      face.status = FaceStatus::Finished;
+    } else if (check.left_max_mm > kFinishedLeftMm && face.status == FaceStatus::Finished) {
+      face.status = FaceStatus::Partial;
+      face.reason = "the simulation finds " + left.str() + " mm left on it";
+    }
+  }
+}
 
 std::vector<double> faceAllowances(const Part& part, const FinishingPlan& finishing, const ToolLibrary& library) {
   std::vector<double> allowance = concaveSag(part.mesh, part.triangle_face, part.faces);
@@ -165,6 +190,7 @@ PlanResult planPart(const Part& part, const ToolLibrary& library, const PlanOpti
     if (verify.face_allowance.empty()) verify.face_allowance = faceAllowances(part, r.finishing, library);
     r.verification = verifyToolpath(part.mesh, part.triangle_face, r.toolpath, r.tools, verify, &r.simulation);
     r.verified = true;
+    judgeFaces(r.verification, r.finishing);
     timed("verification", start);
   }
   r.timings.emplace_back("total", secondsSince(all));
