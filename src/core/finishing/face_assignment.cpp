@@ -89,11 +89,11 @@ std::vector<FaceAssignment> assignFaces(const Part& part, const VisibilityResult
   std::vector<Offer> setup_offers;
   for (int k = 0; k < static_cast<int>(setups.setups.size()); ++k)
     setup_offers.push_back({k, setups.setups[k].direction, setups.setups[k].frame.z});
-  // Faces of holes a drill or a helix makes.
+  // Faces a drill or a helix makes: each hole's bore and bottom (a counterbore or countersink is milled as any face).
   std::vector<int> hole_of(part.faces.size(), -1);
   for (int h = 0; h < static_cast<int>(holes.size()); ++h)
     if (h < static_cast<int>(methods.size()) && methods[h].method != HoleMethod::None)
-      for (int f : holes[h].faces)
+      for (int f : holes[h].bore_faces)
         if (f >= 0 && f < static_cast<int>(hole_of.size())) hole_of[f] = h;
 
   std::vector<FaceAssignment> out(part.faces.size());

@@ -257,7 +257,7 @@ void makeHoles(const Context& c, const std::vector<FaceAssignment>& assignment, 
     op.tool = tool.id;
     op.direction = list.front().axis;
     op.path = drillingPath(list, tool, spot, setup, clearanceAbove(group), c.options.holes);
-    for (int h : group) op.faces.insert(op.faces.end(), holes[h].faces.begin(), holes[h].faces.end());
+    for (int h : group) op.faces.insert(op.faces.end(), holes[h].bore_faces.begin(), holes[h].bore_faces.end());
     if (spot) op.note = "spot drilling";
     return op;
   };
@@ -278,7 +278,7 @@ void makeHoles(const Context& c, const std::vector<FaceAssignment>& assignment, 
       op.tool = tool->id;
       op.direction = holes[group.front()].axis;
       for (int h : group) {
-        op.faces.insert(op.faces.end(), holes[h].faces.begin(), holes[h].faces.end());
+        op.faces.insert(op.faces.end(), holes[h].bore_faces.begin(), holes[h].bore_faces.end());
         const Toolpath p = helixPath(holes[h], *tool, setup, clearanceAbove(group), c.options.holes);
         op.path.insert(op.path.end(), p.begin(), p.end());
       }
@@ -287,7 +287,7 @@ void makeHoles(const Context& c, const std::vector<FaceAssignment>& assignment, 
     }
     if (op.path.empty()) continue;
     for (int h : group)
-      for (int f : holes[h].faces) tally.note(f, 0, 1.0, methods[h].reason);
+      for (int f : holes[h].bore_faces) tally.note(f, 0, 1.0, methods[h].reason);
     per_setup[setup].push_back(std::move(op));
   }
 }
