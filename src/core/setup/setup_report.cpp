@@ -91,9 +91,12 @@ nlohmann::json setupPlanJson(const SetupPlan& plan, const DirectionSet& directio
 std::string setupPlanText(const Part& part, const SetupPlan& plan, const DirectionSet& directions) {
   std::string text = "mode:         " + std::string(machineModeName(plan.mode));
   if (plan.mode == MachineMode::FiveAxis) text += format(", tilt up to %.0f deg", plan.max_tilt_deg);
-  text += "\nsetups:       " + std::to_string(plan.setups.size()) +
+  int added = 0;
+  for (const Setup& s : plan.setups) added += s.for_finishing ? 1 : 0;
+  text += "\nsetups:       " + std::to_string(plan.setups.size() - added) +
           (plan.proven_minimal ? " (proven minimal" : " (best found in the time limit") + ", greedy cover needs " +
-          std::to_string(plan.greedy_setups) + ")\n";
+          std::to_string(plan.greedy_setups) + ")" +
+          (added > 0 ? " + " + std::to_string(added) + " added for finishing" : std::string()) + "\n";
   for (int i = 0; i < static_cast<int>(plan.setups.size()); ++i)
     text += "  " + setupLine(part, plan.setups[i], i, directions);
   text += "unmachinable: " + std::to_string(plan.unmachinable_triangles.size()) + " triangles in " +
