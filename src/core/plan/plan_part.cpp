@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <Eigen/Geometry>
+
 namespace art2part {
 
 namespace {
@@ -14,6 +16,10 @@ using Clock = std::chrono::steady_clock;
 
 constexpr double kFinishedLeftMm = 0.05;  // a face the simulation leaves within this of its surface is finished
 constexpr int kJudgedSamples = 3;         // ... when at least this many of its rays measure it
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kSameAxis = 1e-4;          // rad: operations whose axes differ by more are linked round the stock
+constexpr double kTransitionStepDeg = 10;   // the linking arc's steps: chords sag by 0.4 % of its radius
+constexpr double kTransitionMargin = 5;     // mm beyond the stock's sphere and clearance, at least (1 % of the size)
 
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
@@ -29,9 +35,53 @@ std::vector<Tool> toolsUsed(const Toolpath& path, const ToolLibrary& library) {
   return tools;
 }
 
-// Setup by setup: its roughing, then its finishing.
-void combine(PlanResult& r) {
+// The stock's top along a direction (its highest point) plus the clearance.
+double topAlong(const Mesh& stock, const Vec3& d, double clearance) {
+  double top = -1e300;
+  for (const Vec3& v : stock.vertices) top = std::max(top, v.dot(d));
+  return top + clearance;
+}
+
+// Rapids from `from` (axis a) to `to` (axis b) in one setup, when the two axes differ: up along a to the stock's top
+// plane along it, out to the sphere round the stock (centre `centre`, radius `radius`: every point of the stock within
+// it), along the sphere in steps of kTransitionStepDeg with the axis pointing out of it (the tool stays outside the
+// sphere), in along b over `to`'s start, down to it. What the post makes of a rotary reposition (retract, turn,
+// approach), written out so the simulation sweeps what the machine does.
+Toolpath axisTransition(const CutterLocation& from, const CutterLocation& to, const Mesh& stock, const Vec3& centre,
+                        double radius, double clearance) {
+  Toolpath out;
+  auto add = [&](const Vec3& tip, const Vec3& axis) {
+    CutterLocation c = to;
+    c.move = MoveKind::Rapid;
+    c.tip = tip;
+    c.axis = axis.normalized();
+    out.push_back(c);
+  };
+  const Vec3 a = from.axis.normalized(), b = to.axis.normalized();
+  const double up = std::max(0.0, topAlong(stock, a, clearance) - from.tip.dot(a));
+  add(from.tip + up * a, a);
+  const double angle = std::acos(std::clamp(a.dot(b), -1.0, 1.0));
+  const int steps = std::max(1, static_cast<int>(std::ceil(angle / (kTransitionStepDeg * kPi / 180))));
+  // A rotation taking a to b (any axis square to a when they are opposite).
+  Vec3 turn = a.cross(b);
+  if (turn.norm() < 1e-9) turn = a.unitOrthogonal();
+  turn.normalize();
+  for (int i = 0; i <= steps; ++i) {
+    const Vec3 d = Eigen::AngleAxisd(angle * i / steps, turn) * a;
+    add(centre + radius * d, d);
+  }
+  const double down = std::max(0.0, topAlong(stock, b, clearance) - to.tip.dot(b));
+  add(to.tip + down * b, b);
+  return out;
+}
+
+// Setup by setup: its roughing, then its finishing; between operations of one setup whose axes differ, the
+// transition above.
+void combine(PlanResult& r, const Mesh& stock, double clearance) {
   const int setups = static_cast<int>(r.setups.setups.size());
+  Box box = boundingBox(stock);
+  const Vec3 centre = box.center();
+  const double radius = 0.5 * box.diagonal() + clearance + std::max(kTransitionMargin, 0.01 * box.diagonal());
   for (int k = 0; k < setups; ++k) {
     auto append = [&](const Toolpath& path, const std::string& kind, const std::string& tool, bool finishing,
                       int source) {
@@ -44,8 +94,14 @@ void combine(PlanResult& r) {
       op.finishing = finishing;
       op.source = source;
       op.first_point = r.toolpath.size();
-      op.points = path.size();
-      for (CutterLocation c : path) {
+      Toolpath rows = path;
+      if (!r.toolpath.empty() && r.toolpath.back().setup == k &&
+          r.toolpath.back().axis.normalized().dot(path.front().axis.normalized()) < std::cos(kSameAxis)) {
+        Toolpath link = axisTransition(r.toolpath.back(), path.front(), stock, centre, radius, clearance);
+        rows.insert(rows.begin(), link.begin(), link.end());
+      }
+      op.points = rows.size();
+      for (CutterLocation c : rows) {
         c.op = op.index;
         r.toolpath.push_back(std::move(c));
       }
@@ -180,7 +236,7 @@ PlanResult planPart(const Part& part, const ToolLibrary& library, const PlanOpti
     timed("finishing", start);
   }
 
-  combine(r);
+  combine(r, roughingStock(part, options.roughing), options.roughing.clearance);
   r.tools = toolsUsed(r.toolpath, library);
   if (options.verify && !r.toolpath.empty() && !r.cancelled) {
     start = Clock::now();
