@@ -43,6 +43,7 @@ namespace {
 constexpr double kFinished = 0.99;   // a face whose reached share is at least this counts as finished
 constexpr double kRetryShare = 0.5;  // a face reached less than this by its choice tries its next choice
 constexpr int kRounds = 3;           // choices tried per face at most
+constexpr double kSpotPointDeg = 90;  // a spot drill's point
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -129,6 +130,11 @@ void estimateTime(FinishingOperation& op, const ToolLibrary& library, const Fini
   const Tool* tool = library.find(op.tool);
   const double feed = tool ? std::max(1.0, tool->feed_mm_min) : 1000.0;
   op.seconds = 60.0 * (op.feed_mm / feed + op.rapid_mm / options.rapid_mm_min);
+}
+
+// A spot drill: a drill with the 90 deg point that centres holes (and chamfers them).
+bool isSpotDrill(const Tool* tool) {
+  return tool && tool->type == ToolType::Drill && std::abs(tool->point_angle_deg - kSpotPointDeg) < 1;
 }
 
 // Order of a setup's operations: each tool once, flat end mills (largest first, rest tools after), then ball and bull
@@ -304,7 +310,7 @@ void orderOperations(const Context& c, std::vector<std::vector<FinishingOperatio
       const Tool* tb = c.in.library.find(b.tool);
       const int ca = toolClass(ta), cb = toolClass(tb);
       if (ca != cb) return ca < cb;
-      const bool spot_a = a.note == "spot drilling", spot_b = b.note == "spot drilling";
+      const bool spot_a = isSpotDrill(ta), spot_b = isSpotDrill(tb);
       if (spot_a != spot_b) return spot_a;
       if (ta && tb && ca == 0 && ta->diameter != tb->diameter) return ta->diameter > tb->diameter;
       return first[a.tool] < first[b.tool];
