@@ -1,5 +1,7 @@
 #include "setup_markers.h"
 
+#include "marker_helpers.h"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -79,13 +81,6 @@ visualization_msgs::Marker baseMarker(const std::string& frame_id, const std::st
   return m;
 }
 
-geometry_msgs::Vector3 toVectorMsg(const Vec3& v) {
-  geometry_msgs::Vector3 out;
-  out.x = v.x();
-  out.y = v.y();
-  out.z = v.z();
-  return out;
-}
 
 template <class Out, class In>
 std::vector<Out> converted(const std::vector<In>& in) {

@@ -1,5 +1,7 @@
 #include "visibility_markers.h"
 
+#include "marker_helpers.h"
+
 #include <algorithm>
 
 #include "art2part/render/palette.h"
@@ -11,14 +13,6 @@ namespace {
 
 constexpr double kFourPi = 4.0 * 3.14159265358979323846;
 
-std_msgs::ColorRGBA toColour(const Rgb& c, float alpha = 1.0f) {
-  std_msgs::ColorRGBA out;
-  out.r = c[0];
-  out.g = c[1];
-  out.b = c[2];
-  out.a = alpha;
-  return out;
-}
 
 visualization_msgs::Marker baseMarker(const std::string& frame_id, const std::string& ns, int type) {
   visualization_msgs::Marker m;

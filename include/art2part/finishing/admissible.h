@@ -68,4 +68,11 @@ bool flatMillMakesEdge(const EdgeCondition& edge, const Vec3& d, double toleranc
 // (the least radius of concave bending between neighbouring triangles of the face), infinity when flat or convex.
 double concaveRadius(const Part& part, int face, const std::vector<int>& triangles);
 
+// The sampled direction closest to `d` if within `tolerance` radians (special directions sit exactly on plane normals
+// and axes), else -1.
+int sampledDirection(const DirectionSet& directions, const Vec3& d, double tolerance);
+
+// The extent of the triangles along `d` (unit): a face's depth seen from d.
+double extentAlong(const Mesh& mesh, const std::vector<int>& triangles, const Vec3& d);
+
 }  // namespace art2part

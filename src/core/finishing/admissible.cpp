@@ -168,4 +168,25 @@ double concaveRadius(const Part& part, int face, const std::vector<int>& triangl
   return least;
 }
 
+int sampledDirection(const DirectionSet& directions, const Vec3& d, double tolerance) {
+  int best = -1;
+  double best_dot = std::cos(tolerance);
+  for (int i = 0; i < directions.size(); ++i) {
+    const double c = directions.directions[i].dot(d);
+    if (c >= best_dot) best_dot = c, best = i;
+  }
+  return best;
+}
+
+double extentAlong(const Mesh& mesh, const std::vector<int>& triangles, const Vec3& d) {
+  double lo = 1e300, hi = -1e300;
+  for (int t : triangles)
+    for (int c = 0; c < 3; ++c) {
+      const double z = mesh.corner(t, c).dot(d);
+      lo = std::min(lo, z);
+      hi = std::max(hi, z);
+    }
+  return triangles.empty() ? 0.0 : hi - lo;
+}
+
 }  // namespace art2part

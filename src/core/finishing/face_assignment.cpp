@@ -23,24 +23,13 @@ struct Offer {
   Vec3 d = Vec3::UnitZ();
 };
 
-// The sampled direction closest to `d` if within kSameDirection (special directions sit exactly on plane normals and
-// axes), else -1.
-int sampledIndex(const DirectionSet& directions, const Vec3& d) {
-  int best = -1;
-  double best_dot = std::cos(kSameDirection);
-  for (int i = 0; i < directions.size(); ++i) {
-    const double c = directions.directions[i].dot(d);
-    if (c >= best_dot) best_dot = c, best = i;
-  }
-  return best;
-}
 
 // The offers for a face's own direction `d`: every setup direction within the tilt (5-axis), the nearest first.
 std::vector<Offer> ownDirectionOffers(const SetupPlan& setups, const DirectionSet& directions, const Vec3& d,
                                       const FinishingOptions& options) {
   std::vector<Offer> out;
   if (options.mode != MachineMode::FiveAxis) return out;
-  const int index = sampledIndex(directions, d);
+  const int index = sampledDirection(directions, d, kSameDirection);
   if (index < 0) return out;
   const double tilt = setups.max_tilt_deg * kPi / 180;
   for (int k = 0; k < static_cast<int>(setups.setups.size()); ++k)
@@ -51,16 +40,6 @@ std::vector<Offer> ownDirectionOffers(const SetupPlan& setups, const DirectionSe
   return out;
 }
 
-double extentAlong(const Mesh& mesh, const std::vector<int>& triangles, const Vec3& d) {
-  double lo = 1e300, hi = -1e300;
-  for (int t : triangles)
-    for (int c = 0; c < 3; ++c) {
-      const double z = mesh.corner(t, c).dot(d);
-      lo = std::min(lo, z);
-      hi = std::max(hi, z);
-    }
-  return hi - lo;
-}
 
 double leastDot(const AdmissibleSet& surface, const Vec3& d) {
   double least = 1;

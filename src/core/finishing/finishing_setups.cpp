@@ -15,15 +15,6 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kSameDirection = 0.01 * kPi / 180;  // a sampled direction this close is the face's own
 
-int sampledIndex(const DirectionSet& directions, const Vec3& d) {
-  int best = -1;
-  double best_dot = std::cos(kSameDirection);
-  for (int i = 0; i < directions.size(); ++i) {
-    const double c = directions.directions[i].dot(d);
-    if (c >= best_dot) best_dot = c, best = i;
-  }
-  return best;
-}
 
 // Whether a face's shape asks for a strategy its assignment does not give it from a direction that sees it whole.
 bool wantsItsOwnDirection(const Part& part, const FaceAssignment& a) {
@@ -36,15 +27,6 @@ bool wantsItsOwnDirection(const Part& part, const FaceAssignment& a) {
   return true;
 }
 
-double extentAlong(const Mesh& mesh, const std::vector<int>& triangles, const Vec3& d) {
-  double lo = 1e300, hi = -1e300;
-  for (int t : triangles)
-    for (int c = 0; c < 3; ++c) {
-      lo = std::min(lo, mesh.corner(t, c).dot(d));
-      hi = std::max(hi, mesh.corner(t, c).dot(d));
-    }
-  return hi - lo;
-}
 
 }  // namespace
 
@@ -73,7 +55,7 @@ std::vector<Setup> finishingSetups(const Part& part, const VisibilityResult& vis
       if (set.freedom == Freedom::Zero) {
         for (const Vec3& d : {set.axis, Vec3(-set.axis)}) {
           if (d.dot(set.axis) < 0 && !set.both_senses) continue;
-          const int i = sampledIndex(directions, d);
+          const int i = sampledDirection(directions, d, kSameDirection);
           if (i >= 0 && coneHas(seen, i)) serving.push_back(i);
         }
       } else {  // side milling: the directions in the plane that see it, within the flutes
