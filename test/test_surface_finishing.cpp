@@ -559,3 +559,22 @@ TEST(SurfaceFinishing, ConcavePocketScallopHoldsAndBullAndFlatMillsDoNotGouge) {
     }
   }
 }
+
+TEST(SurfaceFinishing, RefusesWhatItCannotDo) {
+  Mesh block = test::box(Vec3(0, 0, 0), Vec3(20, 20, 10));
+  const Part part = partFromMesh(block, "block");
+  const SetupFrame frame = setupFrame(part, Vec3::UnitZ());
+  const Tool ball = ball6();
+  EXPECT_THROW(finishSurfaces3Axis(part, {}, frame, ball, 0), InputError);
+  EXPECT_THROW(finishSurfaces3Axis(part, {static_cast<int>(part.faces.size())}, frame, ball, 0), InputError);
+  EXPECT_THROW(finishSurfaces3Axis(part, {0}, frame, cutter("drill6", ToolType::Drill, 6), 0), InputError);
+  EXPECT_THROW(finishSurfaces5Axis(part, {0}, frame, Vec3::UnitZ(), cutter("flat6", ToolType::Flat, 6), 0),
+               InputError);
+  EXPECT_THROW(finishSurfaces5Axis(part, {0}, frame, Vec3::Zero(), ball, 0), InputError);
+  SurfaceFinishingOptions bad;
+  bad.scallop = 0;
+  EXPECT_THROW(finishSurfaces3Axis(part, {0}, frame, ball, 0, bad), InputError);
+  bad = {};
+  bad.steep_angle_deg = 89;
+  EXPECT_THROW(finishSurfaces3Axis(part, {0}, frame, ball, 0, bad), InputError);
+}

@@ -71,7 +71,8 @@ struct SurfaceFinishingOptions {
   double steep_angle_deg = 40;      // 3-axis: slopes steeper than this (from the plane square to the tool) get waterline
   double chordal_tolerance = 0.005; // mm: a straight move between two points stays this close to the CL surface
   double sample_step = 0.0;         // mm along a pass before chordal refinement; 0 = a tenth of the tool radius
-  double map_pitch = 0.0;           // mm between nodes of the CL height map; 0 = a quarter of the tool radius
+  double map_pitch = 0.0;           // mm between nodes of the CL height map; 0 = a quarter of the tool radius (coarser
+                                    // where the map would pass 16 M nodes)
   double region_margin = 0.0;       // mm the faces' region grows by beyond their edges; 0 = one stepover
   double skin = 0.5;                // mm of stock beyond the part that the shank and holder must clear (allowance + stairs)
   double holder_margin = 0.5;       // mm more between shank or holder and that

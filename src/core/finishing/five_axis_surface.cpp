@@ -154,9 +154,20 @@ SurfaceFinishingResult finishSurfaces5Axis(const Part& part, const std::vector<i
     const std::vector<Pass>& planned = plan.ordered.passes;
     std::vector<std::vector<std::vector<Pose>>> tilted(planned.size());
     std::vector<int> skipped(planned.size(), 0);
+    // The passes' chords are straight along the CL surface, but the tool turning along a long one sweeps its body
+    // through poses no check saw: centres are taken at most a sample step apart, each pose checked.
+    const double step = plan.ctx->sample_step;
     parallelFor(static_cast<int>(planned.size()), options.threads, [&](int k) {
       std::vector<Vec3> centres;
-      for (const Vec3& p : planned[k].points) centres.push_back(fromFrame(p, drop_frame) + R * d);
+      for (const Vec3& p : planned[k].points) {
+        const Vec3 c = fromFrame(p, drop_frame) + R * d;
+        if (!centres.empty()) {
+          const Vec3 from = centres.back();
+          const int pieces = static_cast<int>(std::ceil((c - from).norm() / step));
+          for (int m = 1; m < pieces; ++m) centres.push_back(from + (c - from) * (static_cast<double>(m) / pieces));
+        }
+        centres.push_back(c);
+      }
       tilted[k] = tiltPass(tilting, centres, rate, skipped[k]);
     });
     for (auto& t : tilted)

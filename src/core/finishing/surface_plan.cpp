@@ -24,6 +24,8 @@ constexpr double kOffWall = 1e-4;
 constexpr double kFlatStepoverOfDiameter = 0.8;
 // The body's clearance maps are this much coarser than the CL map (their radii grow by their pitch).
 constexpr double kClearancePitchFactor = 2;
+// The CL map's nodes at most (about 40 bytes each).
+constexpr double kMaxMapNodes = 16e6;
 
 Vec3 unitNormal(const std::vector<Vec3>& v, const Triangle& t) {
   const Vec3 n = (v[t[1]] - v[t[0]]).cross(v[t[2]] - v[t[0]]);
@@ -337,8 +339,7 @@ Plan planPasses(const Part& part, const std::vector<int>& faces_in, const SetupF
   // The spacing of the cutter centres on a flat (a flat end mill: passes overlapping by a fifth).
   const double spacing = r > 0 ? scallopStepover(r, o.scallop, kInf) : kFlatStepoverOfDiameter * tool.diameter;
   result.stepover_mm = spacing;
-  const double pitch = o.map_pitch > 0 ? o.map_pitch : 0.25 * R;
-  const double margin = std::max(o.region_margin > 0 ? o.region_margin : spacing, pitch);
+  double pitch = o.map_pitch > 0 ? o.map_pitch : 0.25 * R;
 
   // The faces' triangles, and those facing the direction (the window of the map).
   std::vector<char> face_member(part.faces.size(), 0), in_face(tris.size(), 0);
@@ -359,6 +360,11 @@ Plan planPasses(const Part& part, const std::vector<int>& faces_in, const SetupF
     result.seconds_map = secondsSince(start);
     return plan;
   }
+  // A small tool over a large part: the map keeps to kMaxMapNodes by a coarser pitch (the passes' points are drops
+  // and refined all the same; only the region's edges and the contours' first crossings come coarser).
+  const Vec3 extent = window.size() + Vec3::Constant(2 * (R + spacing) + 4 * pitch);
+  pitch = std::max(pitch, std::sqrt(extent.x() * extent.y() / kMaxMapNodes));
+  const double margin = std::max(o.region_margin > 0 ? o.region_margin : spacing, pitch);
   const double reach = R + margin + 2 * pitch;
   window.min -= Vec3(reach, reach, 0);
   window.max += Vec3(reach, reach, 0);

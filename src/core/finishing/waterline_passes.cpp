@@ -202,32 +202,42 @@ int cellSegments(const Level& level, const Cell& cell, int out[2][2]) {
 
 // Splits a contour where the body cannot clear; a loop cut somewhere becomes the open stretches between the cuts.
 void keepClear(const Context& ctx, Pass contour, std::vector<Pass>& out) {
+  // A chord is clear when the body's clearance stays below its height all along it (the map sampled half a pitch
+  // apart answers for every point between: contour points may lie a cell's diagonal apart, more than a point's
+  // nearest node answers for).
+  auto chordClear = [&](const Vec3& a, const Vec3& b) {
+    return ctx.body.along(a, b) <= std::min(a.z(), b.z()) + ctx.body_tolerance;
+  };
   std::vector<Vec3>& p = contour.points;
   std::size_t first_bad = p.size();
-  for (std::size_t k = 0; k < p.size(); ++k)
-    if (!ctx.bodyClear(p[k])) {
-      first_bad = k;
-      break;
-    }
+  for (std::size_t k = 0; k < p.size() && first_bad == p.size(); ++k) {
+    if (!ctx.bodyClear(p[k])) first_bad = k;
+    else if (k + 1 < p.size() && !chordClear(p[k], p[k + 1])) first_bad = k + 1;
+  }
   if (first_bad == p.size()) {
     out.push_back(std::move(contour));
     return;
   }
-  if (contour.closed) {  // start the walk at a point that cannot be cut
-    std::vector<Vec3> rotated(p.begin() + first_bad, p.end() - 1);
-    rotated.insert(rotated.end(), p.begin(), p.begin() + first_bad + 1);
+  if (contour.closed) {  // start the walk where the contour cannot be cut (a point, or just after a chord)
+    const std::size_t s = first_bad % (p.size() - 1);
+    std::vector<Vec3> rotated(p.begin() + s, p.end() - 1);
+    rotated.insert(rotated.end(), p.begin(), p.begin() + s + 1);
     p = rotated;
   }
   Pass run;
-  for (const Vec3& q : p) {
-    if (ctx.bodyClear(q)) {
-      run.points.push_back(q);
-      continue;
-    }
+  auto flush = [&] {
     if (run.points.size() >= 2) out.push_back(run);
     run.points.clear();
+  };
+  for (const Vec3& q : p) {
+    if (!ctx.bodyClear(q)) {
+      flush();
+      continue;
+    }
+    if (!run.points.empty() && !chordClear(run.points.back(), q)) flush();
+    run.points.push_back(q);
   }
-  if (run.points.size() >= 2) out.push_back(run);
+  flush();
 }
 
 std::vector<Pass> contoursAt(const Context& ctx, const std::vector<Cell>& cells, double z, EdgeSamples& samples) {
@@ -299,8 +309,14 @@ std::vector<Pass> contoursAt(const Context& ctx, const std::vector<Cell>& cells,
       if (sag > std::min(ctx.gouge_tolerance, ctx.contour_leave)) level.refine(raw[k - 1], raw[k], contour.points, 0);
       contour.points.push_back(raw[k]);
     }
-    contour.points = thin(contour.points, ctx.gouge_tolerance, ctx.contour_leave, true);
-    keepClear(ctx, std::move(contour), out);
+    // The body is checked at every point before thinning: a thinned chord runs by all of them (a long straight wall
+    // is one move, and the holder must clear all along it).
+    std::vector<Pass> clear;
+    keepClear(ctx, std::move(contour), clear);
+    for (Pass& piece : clear) {
+      piece.points = thin(piece.points, ctx.gouge_tolerance, ctx.contour_leave, true);
+      out.push_back(std::move(piece));
+    }
   };
   std::vector<long> starts;
   for (const auto& kv : next)
