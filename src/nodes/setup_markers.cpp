@@ -59,14 +59,6 @@ std::vector<char> matchSpecial(const Part& part, const std::vector<Vec3>& direct
   return special;
 }
 
-std_msgs::ColorRGBA toColour(const RgbColour& c, float alpha = 1.0f) {
-  std_msgs::ColorRGBA out;
-  out.r = c[0];
-  out.g = c[1];
-  out.b = c[2];
-  out.a = alpha;
-  return out;
-}
 
 visualization_msgs::Marker baseMarker(const std::string& frame_id, const std::string& ns, int id, int type) {
   visualization_msgs::Marker m;
