@@ -549,5 +549,44 @@ TEST(SharedParts, HolesALibraryDrillMatchesAreDrilled) {
   }
 }
 
+// Whether p lies inside the closed mesh: the parity of a ray's crossings, along a direction of its own.
+bool insideMesh(const Mesh& mesh, const Vec3& p) {
+  const Vec3 d = Vec3(-0.3111, 0.8427, 0.4393).normalized();
+  int crossings = 0;
+  for (int t = 0; t < mesh.triangleCount(); ++t) {
+    const Vec3 &a = mesh.corner(t, 0), &b = mesh.corner(t, 1), &c = mesh.corner(t, 2);
+    const Vec3 n = (b - a).cross(c - a);
+    const double along = n.dot(d);
+    if (std::abs(along) < 1e-14) continue;
+    const double s = n.dot(a - p) / along;  // the ray meets the plane at p + s d
+    if (s <= 0) continue;
+    const Vec3 x = p + s * d;
+    if ((b - a).cross(x - a).dot(n) < 0 || (c - b).cross(x - b).dot(n) < 0 || (a - c).cross(x - c).dot(n) < 0) continue;
+    ++crossings;
+  }
+  return crossings % 2 == 1;
+}
+
+// A hole called through is open past its far end: the drill's breakthrough meets no material there. ktoolcav (a mesh,
+// faces by segmentation) has shallow recesses whose floors belong to larger faces: taken for through holes, they were
+// drilled 3 mm into the part.
+TEST(SharedParts, ThroughHolesAreOpenPastTheirFarEnd) {
+  LoadOptions inches;
+  inches.unit = LengthUnit::Inch;
+  for (const auto& [name, options] : std::vector<std::pair<std::string, LoadOptions>>{
+           {"ktoolcav.stl", inches}, {"featuretype.STEP", {}}, {"nist_ctc_01_asme1_rd.stp", {}}}) {
+    SCOPED_TRACE(name);
+    const Part part = loadPart(kParts + "/" + name, options);
+    int through = 0;
+    for (const Hole& hole : findHoles(part)) {
+      if (hole.bottom != HoleBottom::Through) continue;
+      ++through;
+      const Vec3 past = hole.mouth - (hole.total_depth + 0.05) * hole.axis;
+      EXPECT_FALSE(insideMesh(part.mesh, past)) << describe(hole);
+    }
+    EXPECT_GT(through, 0);
+  }
+}
+
 }  // namespace
 }  // namespace art2part
