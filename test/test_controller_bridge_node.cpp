@@ -1,7 +1,8 @@
 // controller_bridge + simulated_controller over ROS (test/controller_bridge.test, trunnion_ac, time scale 10):
 // a hand-made 5-axis toolpath becomes a joint trajectory that the simulated controller runs to its last point; the
 // URDF (robot_state_publisher) puts the spindle where the core's forward kinematics does; bad goals and bad folders
-// are refused with a reason and both nodes keep serving.
+// are refused with a reason and both nodes keep serving; a second program while one runs is refused, and a cancelled
+// one answers success false with error_code PREEMPTED.
 #include <actionlib/client/simple_action_client.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
@@ -20,6 +21,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <thread>
 
 #include "art2part/kinematics/inverse_kinematics.h"
 #include "art2part/tooling/tool.h"
@@ -239,6 +241,9 @@ TEST(ControllerBridge, RefusesBadGoalsAndBadFoldersAndKeepsServing) {
   client.cancelGoal();
   EXPECT_TRUE(client.waitForResult(ros::Duration(10)));
   EXPECT_EQ(client.getState(), actionlib::SimpleClientGoalState::PREEMPTED);
+  ASSERT_TRUE(client.getResult());
+  EXPECT_EQ(client.getResult()->error_code, FollowJointTrajectoryResult::PREEMPTED) << "a cancelled goal did not succeed";
+  EXPECT_NE(client.getResult()->error_string.find("cancelled"), std::string::npos) << client.getResult()->error_string;
   const std::map<std::string, double> stopped = jointStatesAfter(nh, ros::Time::now());
   EXPECT_GT(stopped.at("X"), x_goal);
   EXPECT_LT(stopped.at("X"), x_goal + 0.1);
@@ -272,6 +277,47 @@ TEST(ControllerBridge, RefusesBadGoalsAndBadFoldersAndKeepsServing) {
   // And both nodes still answer.
   ASSERT_TRUE(ros::service::waitForService("run_program", ros::Duration(5)));
   EXPECT_TRUE(client.waitForServer(ros::Duration(5)));
+}
+
+TEST(ControllerBridge, ASecondProgramWhileOneRunsIsRefusedAndACancelledOneFails) {
+  ros::NodeHandle nh;
+  ASSERT_TRUE(ros::service::waitForService("run_program", ros::Duration(30)));
+  Client client("follow_joint_trajectory", true);  // any client of the controller may cancel
+  ASSERT_TRUE(client.waitForServer(ros::Duration(30)));
+  const fs::path dir = writeFiveAxisFolder();
+
+  RunToolpaths first;
+  first.request.folder = dir.string();
+  first.request.mode = "5axis";
+  first.request.wait = true;
+  bool called = false;
+  std::thread runner([&] { called = ros::service::call("run_program", first); });
+  auto feedback = ros::topic::waitForMessage<FollowJointTrajectoryActionFeedback>("follow_joint_trajectory/feedback",
+                                                                                  nh, ros::Duration(30));
+  ASSERT_TRUE(feedback) << "the first program runs on the controller";
+
+  RunToolpaths second;
+  second.request.folder = dir.string();
+  second.request.mode = "5axis";
+  ASSERT_TRUE(ros::service::call("run_program", second));
+  EXPECT_FALSE(second.response.success);
+  EXPECT_FALSE(second.response.sent);
+  EXPECT_NE(second.response.message.find("still running on the controller"), std::string::npos)
+      << second.response.message;
+
+  client.cancelAllGoals();
+  runner.join();
+  ASSERT_TRUE(called);
+  EXPECT_FALSE(first.response.success) << first.response.message;
+  EXPECT_TRUE(first.response.sent);
+  EXPECT_EQ(first.response.error_code, FollowJointTrajectoryResult::PREEMPTED) << first.response.message;
+  EXPECT_NE(first.response.message.find("PREEMPTED: cancelled"), std::string::npos) << first.response.message;
+
+  // The bridge is free again: the next program runs to its end.
+  ASSERT_TRUE(ros::service::call("run_program", first));
+  EXPECT_TRUE(first.response.success) << first.response.message;
+  EXPECT_EQ(first.response.error_code, FollowJointTrajectoryResult::SUCCESSFUL);
+  fs::remove_all(dir);
 }
 
 int main(int argc, char** argv) {

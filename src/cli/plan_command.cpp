@@ -3,16 +3,20 @@
 //                    [--verify-resolution MM] [--roughing 3axis|5axis] [--no-finish] [--scallop MM]
 //                    plus the visibility options: the pipeline without ROS (planPart, plan_part.h). Part -> visibility
 // -> setups -> holes -> roughing -> finishing -> verification -> post. --roughing 5axis (the default with --mode 5axis) adds 5-axis voxel roughing after each
-// setup's 3-axis operations and posts for the trunnion (config/machines/trunnion_ac.yaml) unless --machine says. Writes DIR/plan.json, toolpaths.csv, tools.json, mesh.stl, program.ngc (with setup_<k>.ngc,
+// setup's 3-axis operations and posts for the default 5-axis machine (config/machines/trunnion_5axis.yaml) unless --machine says; each setup's
+// part is placed on the machine's table where its travel reaches the whole setup (fixture_placement.h), recorded in
+// plan.json's setups[k].fixture. Writes DIR/plan.json, toolpaths.csv, tools.json, mesh.stl, program.ngc (with setup_<k>.ngc,
 // tool tables, trajectory.csv), setups.png, remaining.png (the stock left, coloured by its thickness) and the
 // visibility contract files (directions.csv, visibility.bits).
 #include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <optional>
 
 #include "arguments.h"
+#include "art2part/post/fixture_placement.h"
 #include "art2part/post/joint_trajectory.h"
 #include "art2part/post/machine_program.h"
 #include "art2part/post/post_files.h"
@@ -90,23 +94,14 @@ RoughingOptions roughingOptionsFrom(const Arguments& a) {
   return options;
 }
 
-// Every setup clamps the part anew, facing up: the setup frame along the table's axes, the middle of the stock's
-// bottom (in that frame) on the table's origin.
-PostOptions clampedPostOptions(const Part& part, const SetupPlan& plan, const RoughingOptions& roughing) {
-  PostOptions options;
-  const Mesh stock = roughingStock(part, roughing);
-  for (int k = 0; k < static_cast<int>(plan.setups.size()); ++k) {
-    const SetupFrame& f = plan.setups[k].frame;
-    Box box;  // the stock in the setup frame
-    for (const Vec3& p : stock.vertices) {
-      const Vec3 d = p - f.origin;
-      box.extend(Vec3(d.dot(f.x), d.dot(f.y), d.dot(f.z)));
-    }
-    const Vec3 bottom(box.center().x(), box.center().y(), box.min.z());
-    const Vec3 anchor = f.origin + bottom.x() * f.x + bottom.y() * f.y + bottom.z() * f.z;
-    options.fixtures[k] = fixtureFacingUp(f.x, f.y, f.z, anchor, Vec3::Zero());
-  }
-  return options;
+// Every setup clamps the part anew, facing up on the machine's table (fixture_placement.h), the stock as roughing saw it.
+std::map<int, Clamping> clampingsFacingUp(const Machine& machine, const Part& part, const SetupPlan& plan,
+                                          const RoughingOptions& roughing) {
+  const Box stock = boundingBox(roughingStock(part, roughing));
+  std::map<int, Clamping> clampings;
+  for (int k = 0; k < static_cast<int>(plan.setups.size()); ++k)
+    clampings[k] = clampFacingUp(machine, plan.setups[k].frame, stock);
+  return clampings;
 }
 
 void writeRemainingPicture(const Part& part, const VerificationState& state, const VerificationReport& report,
@@ -139,7 +134,7 @@ int runPlan(const std::vector<std::string>& args) {
   plan_options.verification.stock_margin = plan_options.roughing.stock_margin;
   plan_options.verification.resolution = a.number("verify-resolution", 0);
   const ToolLibrary library = loadToolLibrary(a.value("tools", std::string(ART2PART_CONFIG_DIR) + "/tools.yaml"));
-  const std::string default_machine = plan_options.roughing.five_axis ? "trunnion_ac.yaml" : "vmc_3axis.yaml";
+  const std::string default_machine = plan_options.roughing.five_axis ? "trunnion_5axis.yaml" : "vmc_3axis.yaml";
   const Machine machine = loadMachine(a.value("machine", std::string(ART2PART_CONFIG_DIR) + "/machines/" + default_machine));
 
   auto start = Clock::now();
@@ -156,12 +151,17 @@ int runPlan(const std::vector<std::string>& args) {
 
   std::string post_error;
   double post_seconds = 0;
+  FixturePlan placement;
   if (plan.verified) writeRemainingPicture(part, plan.simulation, plan.verification, out + "/remaining.png");
   if (!plan.toolpath.empty()) {
     start = Clock::now();
     try {  // a machine too small for the part is a finding of the plan, not a failure of it
-      const MachineProgram program = buildMachineProgram(machine, plan.toolpath, plan.tools, part.source,
-                                                         clampedPostOptions(part, plan.setups, plan_options.roughing));
+      placement = placeSetups(machine, plan.toolpath, plan.tools,
+                              clampingsFacingUp(machine, part, plan.setups, plan_options.roughing));
+      if (!placement.allReachable()) throw InputError(placement.unreachableText());
+      PostOptions post_options;
+      post_options.fixtures = placement.fixtures();
+      const MachineProgram program = buildMachineProgram(machine, plan.toolpath, plan.tools, part.source, post_options);
       const JointTrajectory trajectory = parameterizeTrajectory(machine, programWaypoints(program), TrajectoryOptions{});
       writePostFiles(program, trajectory, 50, out);
     } catch (const InputError& e) {
@@ -175,6 +175,7 @@ int runPlan(const std::vector<std::string>& args) {
   j["timings"]["write"] = write_seconds;
   j["timings"]["post"] = post_seconds;
   j["program"] = {{"machine", machine.name}, {"written", !plan.toolpath.empty() && post_error.empty()}, {"error", post_error}};
+  recordFixtures(j, placement);
   writeJson(j, out + "/plan.json");
   std::cout << "timings:     ";
   for (const auto& [stage, seconds] : j["timings"].items()) std::cout << " " << stage << " " << seconds.get<double>() << " s";
@@ -183,6 +184,7 @@ int runPlan(const std::vector<std::string>& args) {
   std::cout << "part:         " << path << " (" << part.mesh.triangleCount() << " triangles, "
             << plan.visibility.directions.size() << " directions)\n"
             << setupPlanText(part, plan.setups, plan.visibility.directions);
+  for (const SetupPlacement& p : placement.setups) std::cout << "fixture:      " << placementText(machine, p) << "\n";
   const RoughingPlan& roughing = plan.roughing;
   if (roughing.closed_open_mesh_edges > 0)
     std::cout << "solid:        the mesh is open (" << roughing.closed_open_mesh_edges

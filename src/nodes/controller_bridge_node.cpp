@@ -2,11 +2,18 @@
 //   params:   ~machine (a config/machines/*.yaml path, required), ~rate (trajectory points per second, default 50),
 //             ~blend_tolerance (mm, default the post's 0.005), ~chordal_tolerance (mm, default the post's 0.005),
 //             ~controller_wait (s to wait for follow_joint_trajectory's server, default 2)
-//   service:  run_program (RunToolpaths): reads FOLDER/toolpaths.csv and FOLDER/tools.json (a plan folder), builds the
-//             machine program (buildMachineProgram, mode 3+2 | 5axis | auto), its waypoints and their time
-//             parameterization, samples it at the rate; publishes it and sends it to the controller. The trajectory
-//             starts where the controller's joint_states last put the joints (up to the safe height first, then to
-//             the program's start), else at the program's start. Bad input: success=false with the reason.
+//   service:  run_program (RunToolpaths): reads FOLDER/toolpaths.csv and FOLDER/tools.json (a plan folder), places
+//             each setup's part on the machine (placeSetups: the fixtures FOLDER/plan.json records for this machine,
+//             else the search from its setup frames; no plan.json: the machine file's fixtures), checks the travel
+//             of every setup before anything runs (success=false naming each setup the machine cannot reach, and
+//             why), builds the machine program (buildMachineProgram, mode 3+2 | 5axis | auto), its waypoints and
+//             their time parameterization, samples it at the rate; publishes it and sends it to the controller. The
+//             trajectory starts where the controller's joint_states last put the joints (up to the safe height
+//             first, then to the program's start), else at the program's start. Bad input: success=false with the
+//             reason. One program at a time: a request while the last one is being built or is still running on the
+//             controller is refused with a reason (cancel it first: the follow_joint_trajectory action's cancel).
+//             With wait, a program cancelled or preempted on the controller answers success=false, error_code
+//             PREEMPTED (-6) and the controller's reason.
 //   action client: follow_joint_trajectory (FollowJointTrajectory), when a server is there
 //   topics:   joint_trajectory (trajectory_msgs/JointTrajectory, latched), the last trajectory built;
 //             subscribes joint_states (sensor_msgs/JointState)
@@ -22,6 +29,7 @@
 #include <mutex>
 #include <optional>
 
+#include "art2part/post/fixture_placement.h"
 #include "art2part/post/joint_trajectory.h"
 #include "art2part/post/machine_program.h"
 #include "art2part/tooling/tool.h"
@@ -91,9 +99,36 @@ class ControllerBridge {
     return waypoints;
   }
 
+  // One program at a time: claims the bridge for this request, or says what it is busy with.
+  class Claim {
+   public:
+    explicit Claim(ControllerBridge& bridge) : bridge_(bridge) {
+      std::lock_guard<std::mutex> lock(bridge_.run_mutex_);
+      if (bridge_.goal_sent_ && !bridge_.client_.getState().isDone()) {
+        busy_ = "busy: '" + bridge_.running_name_ + "' is still running on the controller (" +
+                bridge_.client_.getState().toString() + "); cancel it first (follow_joint_trajectory/cancel) or wait";
+      } else if (bridge_.building_) {
+        busy_ = "busy: another run_program is building its program";
+      } else {
+        bridge_.building_ = true;
+      }
+    }
+    ~Claim() {
+      if (!busy_.empty()) return;
+      std::lock_guard<std::mutex> lock(bridge_.run_mutex_);
+      bridge_.building_ = false;
+    }
+    const std::string& busy() const { return busy_; }
+
+   private:
+    ControllerBridge& bridge_;
+    std::string busy_;
+  };
+
   bool runProgram(RunToolpaths::Request& req, RunToolpaths::Response& res) {
-    std::lock_guard<std::mutex> running(run_mutex_);  // one program at a time
+    const Claim claim(*this);
     try {
+      if (!claim.busy().empty()) throw InputError(claim.busy());
       if (req.folder.empty()) throw InputError("name a folder holding toolpaths.csv and tools.json");
       namespace fs = std::filesystem;
       if (!fs::is_directory(req.folder)) throw InputError(req.folder + " is not a folder");
@@ -105,6 +140,12 @@ class ControllerBridge {
       options.mode = parsePostMode(req.mode.empty() ? "auto" : req.mode);
       const Toolpath path = readToolpathsCsv((fs::path(req.folder) / "toolpaths.csv").string());
       const std::vector<Tool> tools = readToolsJson((fs::path(req.folder) / "tools.json").string());
+      // Every setup's part where this machine reaches it, checked before anything runs.
+      const FixturePlan placement =
+          placeSetups(machine_, path, tools, clampingsFromPlanFolder(req.folder, machine_), options);
+      for (const SetupPlacement& p : placement.setups) ROS_INFO("run_program: %s", placementText(machine_, p).c_str());
+      if (!placement.allReachable()) throw InputError(placement.unreachableText());
+      options.fixtures = placement.fixtures();
       std::string name = fs::path(req.folder).lexically_normal().filename().string();
       if (name.empty()) name = fs::path(req.folder).lexically_normal().parent_path().filename().string();
       const MachineProgram program = buildMachineProgram(machine_, path, tools, name.empty() ? "part" : name, options);
@@ -127,7 +168,12 @@ class ControllerBridge {
       }
       FollowJointTrajectoryGoal goal;
       goal.trajectory = msg;
-      client_.sendGoal(goal);
+      {
+        std::lock_guard<std::mutex> lock(run_mutex_);
+        client_.sendGoal(goal);
+        goal_sent_ = true;
+        running_name_ = name;
+      }
       res.sent = true;
       if (!req.wait) {
         res.message += "; sent to the controller";
@@ -142,6 +188,9 @@ class ControllerBridge {
       const auto result = client_.getResult();
       res.error_code = result ? result->error_code : FollowJointTrajectoryResult::INVALID_GOAL;
       res.error_string = result ? result->error_string : "no result";
+      if (state == actionlib::SimpleClientGoalState::PREEMPTED &&
+          res.error_code == FollowJointTrajectoryResult::SUCCESSFUL)  // a controller that reports no code for it
+        res.error_code = FollowJointTrajectoryResult::PREEMPTED;
       res.success = state == actionlib::SimpleClientGoalState::SUCCEEDED &&
                     res.error_code == FollowJointTrajectoryResult::SUCCESSFUL;
       res.message += "; controller: " + state.toString() + (res.error_string.empty() ? "" : ": " + res.error_string);
@@ -163,7 +212,11 @@ class ControllerBridge {
   ros::Publisher trajectory_pub_;
   ros::Subscriber state_sub_;
   ros::ServiceServer service_;
-  std::mutex state_mutex_, run_mutex_;
+  std::mutex state_mutex_;
+  std::mutex run_mutex_;      // guards building_, goal_sent_, running_name_ and the client's goal
+  bool building_ = false;     // a run_program is between its claim and its answer
+  bool goal_sent_ = false;    // the client has had a goal (its state is defined)
+  std::string running_name_;  // the program of the last goal sent
   std::optional<std::vector<double>> current_;  // core units, machine joint order
 };
 

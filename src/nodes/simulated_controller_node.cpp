@@ -11,7 +11,7 @@
 //             between two consecutive points or from the joints to the first point), a first point at time 0 away
 //             from the joints; the reason in error_string.
 //             A new goal preempts the running one; cancel stops the joints where they are (no deceleration: a
-//             simulation).
+//             simulation); either way the stopped goal ends PREEMPTED with error_code PREEMPTED and says which.
 //   topics:   joint_states (sensor_msgs/JointState) at ~rate, always (still joints too)
 // The simulation tracks the trajectory exactly: actual = desired (cubic Hermite between points with velocities,
 // linear otherwise), the last point's positions exactly at the end; so path and goal tolerances hold by construction
@@ -145,7 +145,12 @@ class SimulatedController {
           std::lock_guard<std::mutex> lock(mutex_);
           for (int j : check.joint_index) velocities_[j] = 0;  // stopped where they are
         }
-        finish(FollowJointTrajectoryResult::SUCCESSFUL, "preempted: the joints stopped where they were", true);
+        finish(FollowJointTrajectoryResult::PREEMPTED,
+               std::string(!ros::ok()                     ? "shutting down"
+                           : server_.isNewGoalAvailable() ? "preempted by a newer goal"
+                                                          : "cancelled") +
+                   ": the joints stopped where they were",
+               true);
         return;
       }
       const ros::Time now = ros::Time::now();

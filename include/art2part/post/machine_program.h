@@ -37,6 +37,7 @@
 
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -69,6 +70,9 @@ struct PostOptions {
   bool drilling_cycles = true;  // 3+2: drilling runs become G81 / G83 (see above); false: G0 / G1 throughout
   double peck_ratio = 3.0;      // a drilling feed longer than this many drill diameters is pecked (G83)
   std::map<int, FixturePose> fixtures;  // per setup: where the part sits, overriding the machine file's
+  // Set: post only the points of the setup with this index (none when no setup has it: the input is checked, nothing
+  // posted). The placement search (fixture_placement.h) checks setups one by one.
+  std::optional<int> only_setup;
   std::vector<std::string> preamble;    // G-code lines after the modal set-up, e.g. "M429" on the LinuxCNC sim
   IkOptions ik;
 };

@@ -296,6 +296,7 @@ MachineProgram buildMachineProgram(const Machine& machine, const Toolpath& path,
 
   ProgramBuilder builder(program, path, std::move(numbers));
   for (const PointRun& run : runs) {
+    if (options.only_setup && path[run.begin].setup != *options.only_setup) continue;
     builder.beginSetup(path[run.begin].setup);
     builder.retract(true);  // a setup's own program starts wherever the machine is
     if (program.mode == PostMode::ThreePlusTwo) {
