@@ -42,13 +42,39 @@ double topAlong(const Mesh& stock, const Vec3& d, double clearance) {
   return top + clearance;
 }
 
-// Rapids from `from` (axis a) to `to` (axis b) in one setup, when the two axes differ: up along a to the stock's top
-// plane along it, out to the sphere round the stock (centre `centre`, radius `radius`: every point of the stock within
-// it), along the sphere in steps of kTransitionStepDeg with the axis pointing out of it (the tool stays outside the
-// sphere), in along b over `to`'s start, down to it. What the post makes of a rotary reposition (retract, turn,
-// approach), written out so the simulation sweeps what the machine does.
-Toolpath axisTransition(const CutterLocation& from, const CutterLocation& to, const Mesh& stock, const Vec3& centre,
-                        double radius, double clearance) {
+// The directions from a to b along the sphere in steps of at most kTransitionStepDeg, both ends included: the shorter
+// great circle, unless it leans further from the setup direction `up` than both ends do (a and b opposite, or the
+// shorter way passing under the part), then by way of `up`: the tool never swings below the part towards the table.
+std::vector<Vec3> transitionDirections(const Vec3& a, const Vec3& b, const Vec3& up) {
+  auto arc = [](const Vec3& from, const Vec3& to) {
+    const double angle = std::acos(std::clamp(from.dot(to), -1.0, 1.0));
+    const int steps = std::max(1, static_cast<int>(std::ceil(angle / (kTransitionStepDeg * kPi / 180))));
+    Vec3 turn = from.cross(to);  // a rotation taking `from` to `to` (any axis square to it when they are opposite)
+    if (turn.norm() < 1e-9) turn = from.unitOrthogonal();
+    turn.normalize();
+    std::vector<Vec3> out;
+    for (int i = 0; i <= steps; ++i) out.push_back(Eigen::AngleAxisd(angle * i / steps, turn) * from);
+    return out;
+  };
+  const double lowest = std::min(a.dot(up), b.dot(up));
+  std::vector<Vec3> direct = arc(a, b);
+  for (const Vec3& d : direct)
+    if (d.dot(up) < lowest - 1e-9) {
+      std::vector<Vec3> via = arc(a, up);
+      const std::vector<Vec3> rest = arc(up, b);
+      via.insert(via.end(), rest.begin() + 1, rest.end());
+      return via;
+    }
+  return direct;
+}
+
+// Rapids from `from` (axis a) to `to` (axis b) in one setup (direction `up`), when the two axes differ: up along a to
+// the stock's top plane along it, out to the sphere round the stock (centre `centre`, radius `radius`: every point of
+// the stock within it), along the sphere (transitionDirections) with the axis pointing out of it (the tool stays
+// outside the sphere), in along b over `to`'s start, down to it. What the post makes of a rotary reposition (retract,
+// turn, approach), written out so the simulation sweeps what the machine does.
+Toolpath axisTransition(const CutterLocation& from, const CutterLocation& to, const Vec3& up, const Mesh& stock,
+                        const Vec3& centre, double radius, double clearance) {
   Toolpath out;
   auto add = [&](const Vec3& tip, const Vec3& axis) {
     CutterLocation c = to;
@@ -58,18 +84,9 @@ Toolpath axisTransition(const CutterLocation& from, const CutterLocation& to, co
     out.push_back(c);
   };
   const Vec3 a = from.axis.normalized(), b = to.axis.normalized();
-  const double up = std::max(0.0, topAlong(stock, a, clearance) - from.tip.dot(a));
-  add(from.tip + up * a, a);
-  const double angle = std::acos(std::clamp(a.dot(b), -1.0, 1.0));
-  const int steps = std::max(1, static_cast<int>(std::ceil(angle / (kTransitionStepDeg * kPi / 180))));
-  // A rotation taking a to b (any axis square to a when they are opposite).
-  Vec3 turn = a.cross(b);
-  if (turn.norm() < 1e-9) turn = a.unitOrthogonal();
-  turn.normalize();
-  for (int i = 0; i <= steps; ++i) {
-    const Vec3 d = Eigen::AngleAxisd(angle * i / steps, turn) * a;
-    add(centre + radius * d, d);
-  }
+  const double up_a = std::max(0.0, topAlong(stock, a, clearance) - from.tip.dot(a));
+  add(from.tip + up_a * a, a);
+  for (const Vec3& d : transitionDirections(a, b, up.normalized())) add(centre + radius * d, d);
   const double down = std::max(0.0, topAlong(stock, b, clearance) - to.tip.dot(b));
   add(to.tip + down * b, b);
   return out;
@@ -97,7 +114,8 @@ void combine(PlanResult& r, const Mesh& stock, double clearance) {
       Toolpath rows = path;
       if (!r.toolpath.empty() && r.toolpath.back().setup == k &&
           r.toolpath.back().axis.normalized().dot(path.front().axis.normalized()) < std::cos(kSameAxis)) {
-        Toolpath link = axisTransition(r.toolpath.back(), path.front(), stock, centre, radius, clearance);
+        Toolpath link = axisTransition(r.toolpath.back(), path.front(), r.setups.setups[k].frame.z, stock, centre,
+                                       radius, clearance);
         rows.insert(rows.begin(), link.begin(), link.end());
       }
       op.points = rows.size();
