@@ -1,5 +1,6 @@
 // The bundled machines run the package's own plans (test/machine_runs.test): `art2part plan` makes plan folders of
-// the shared featuretype part (a multi-setup 3-axis plan and a 5-axis plan, roughing only to keep the test short);
+// the shared featuretype part (a multi-setup 3-axis plan, roughing only to keep the test short, and the whole 5-axis
+// plan, whose finishing links tool axes across the setup);
 // the controller bridge places each setup on its machine from plan.json, and the simulated controller runs the whole
 // trajectory to its last point: on the 3-axis VMC and on the default 5-axis trunnion. LinuxCNC's sim trunnion is too
 // short in Z: its bridge refuses before running anything, naming every setup and the joint.
@@ -36,12 +37,12 @@ std::string readFile(const fs::path& path) {
   return text.str();
 }
 
-// `art2part plan featuretype.STEP --no-finish ARGS` into a fresh folder; the folder, or "" with a test failure.
+// `art2part plan featuretype.STEP ARGS` into a fresh folder; the folder, or "" with a test failure.
 fs::path planFolder(const std::string& name, const std::string& arguments) {
   const fs::path dir = fs::temp_directory_path() / ("art2part_runs_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
-  const std::string command = std::string(ART2PART_CLI) + " plan " + kPart + " --no-finish --out " + dir.string() +
+  const std::string command = std::string(ART2PART_CLI) + " plan " + kPart + " --out " + dir.string() +
                               " " + arguments + " > " + (dir / "log").string() + " 2>&1";
   if (std::system(command.c_str()) != 0) {
     ADD_FAILURE() << command << "\n" << readFile(dir / "log");
@@ -85,7 +86,7 @@ void expectJointsAtTheEnd(const std::string& ns) {
 }  // namespace
 
 TEST(MachineRuns, AMultiSetupThreeAxisPlanRunsToTheEndOnTheVmc) {
-  const fs::path dir = planFolder("3axis", "");
+  const fs::path dir = planFolder("3axis", "--no-finish");
   ASSERT_FALSE(dir.empty());
   const nlohmann::json plan = planJson(dir);
   const std::size_t setups = plan["setups"].size();
