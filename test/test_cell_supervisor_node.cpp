@@ -37,7 +37,7 @@ const std::string kFeaturetype = std::string(ART2PART_SHARED_PARTS) + "/featuret
 constexpr double kPlanTimeout = 300;  // s for one featuretype plan (about 10 s on 2 idle cores)
 
 // One goal's run: its end state and result, and when each feedback came.
-struct Run {
+struct GoalRun {
   State state{State::LOST};
   PlanPartResult result;
   std::vector<PlanPartFeedback> feedback;
@@ -71,7 +71,7 @@ class Tracker {
     return false;
   }
 
-  Run finish(double timeout) {
+  GoalRun finish(double timeout) {
     client_.waitForResult(ros::Duration(timeout));
     std::lock_guard<std::mutex> lock(mutex_);
     run_.state = client_.getState();
@@ -87,7 +87,7 @@ class Tracker {
  private:
   Client& client_;
   std::mutex mutex_;
-  Run run_;
+  GoalRun run_;
   std::chrono::steady_clock::time_point start_;
 };
 
@@ -100,7 +100,7 @@ Client& client(int k = 0) {
   return *clients[k];
 }
 
-Run plan(const PlanPartGoal& goal, double timeout = kPlanTimeout) {
+GoalRun plan(const PlanPartGoal& goal, double timeout = kPlanTimeout) {
   Tracker t(client());
   t.send(goal);
   return t.finish(timeout);
@@ -123,7 +123,7 @@ nlohmann::json readJson(const std::string& path) {
 // so a caller learns nothing about the file system.
 TEST(CellSupervisor, BadGoalsAreRefusedWithAReasonAndTheNodeServesOn) {
   auto refused = [](const PlanPartGoal& goal) {
-    const Run r = plan(goal, 30);
+    const GoalRun r = plan(goal, 30);
     EXPECT_EQ(r.state, State::ABORTED) << r.result.reason;
     EXPECT_FALSE(r.result.success);
     EXPECT_FALSE(r.result.reason.empty());
@@ -161,7 +161,7 @@ TEST(CellSupervisor, BadGoalsAreRefusedWithAReasonAndTheNodeServesOn) {
 // The single call: the plan folder of a goal holds what `art2part plan` writes for the same part, the same
 // operations (kind, tool, setup, points), the same faces' verdicts and a program; feedback never pauses a second.
 TEST(CellSupervisor, OneGoalMakesTheSamePlanAsTheCommandLine) {
-  const Run r = plan(featuretypeGoal());
+  const GoalRun r = plan(featuretypeGoal());
   ASSERT_EQ(r.state, State::SUCCEEDED) << r.result.reason;
   ASSERT_TRUE(r.result.success);
   const fs::path dir = r.result.output_dir;
@@ -222,7 +222,7 @@ TEST(CellSupervisor, CancelEndsAGoalWithinASecond) {
     ASSERT_TRUE(t.waitForStage(stage, kPlanTimeout)) << "never reached " << stage;
     const double asked = t.elapsed();
     client().cancelGoal();
-    const Run r = t.finish(30);
+    const GoalRun r = t.finish(30);
     EXPECT_EQ(r.state, State::PREEMPTED) << r.result.reason;
     EXPECT_LE(r.seconds - asked, 1.0) << "the cancel took " << r.seconds - asked << " s";
   }
@@ -237,11 +237,11 @@ TEST(CellSupervisor, GoalsQueueAndTheQueueHasALength) {
   second.send(featuretypeGoal());
   ASSERT_TRUE(second.waitForStage("queued", 10));
   third.send(featuretypeGoal());
-  const Run rejected = third.finish(10);
+  const GoalRun rejected = third.finish(10);
   EXPECT_EQ(rejected.state, State::REJECTED);
   EXPECT_NE(rejected.result.reason.find("busy"), std::string::npos) << rejected.result.reason;
   client(1).cancelGoal();
-  const Run cancelled = second.finish(10);
+  const GoalRun cancelled = second.finish(10);
   EXPECT_EQ(cancelled.state, State::PREEMPTED) << cancelled.result.reason;
   client(0).cancelGoal();
   EXPECT_EQ(first.finish(10).state, State::PREEMPTED);
