@@ -4,7 +4,7 @@
 //
 // A plan folder holds: plan.json (the plan, its figures and timings), toolpaths.csv and tools.json (the path and its
 // tools), mesh.stl (the triangles the path refers to), directions.csv and visibility.bits (the visibility files),
-// setups.png and remaining.png (pictures), and with a machine program.ngc, setup_<k>.ngc, the tool tables and
+// setups.png, setup_<k>.png and remaining.png (pictures), setup_sheet.html (setup_sheet.h), and with a machine program.ngc, setup_<k>.ngc, the tool tables and
 // trajectory.csv.
 #pragma once
 

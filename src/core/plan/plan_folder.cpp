@@ -10,6 +10,7 @@
 #include "art2part/geometry/mesh_io.h"
 #include "art2part/plan/plan_json.h"
 #include "art2part/plan/plan_pictures.h"
+#include "art2part/plan/setup_sheet.h"
 #include "art2part/post/joint_trajectory.h"
 #include "art2part/post/post_files.h"
 #include "art2part/tooling/toolpath.h"
@@ -81,6 +82,7 @@ WrittenPlan writePlanFolder(const std::string& dir, const Part& part, const Plan
   writeToolpathFiles(dir, plan.toolpath, plan.tools);
   if (options.pictures) {
     writeSetupPicture(part, plan.setups, (folder / "setups.png").string());
+    writeSetupPictures(dir, part, plan.setups);
     if (plan.verified) writeRemainingPicture(part, plan, (folder / "remaining.png").string());
   }
   written.write_seconds = secondsSince(start);
@@ -112,6 +114,7 @@ WrittenPlan writePlanFolder(const std::string& dir, const Part& part, const Plan
                   {"written", written.program_written},
                   {"error", written.program_written ? "" : written.program_error}};
   writeJsonFile(j, (folder / "plan.json").string());
+  writeSetupSheet(dir);
   written.plan = std::move(j);
   return written;
 }

@@ -2,9 +2,12 @@
 #include "art2part/plan/plan_pictures.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <filesystem>
 #include <stdexcept>
 
 #include "art2part/geometry/mesh.h"  // InputError
+#include "art2part/render/annotate.h"
 #include "art2part/render/palette.h"
 #include "art2part/render/picture.h"
 #include "art2part/simulation/part_distance.h"
@@ -19,6 +22,11 @@ std::array<unsigned char, 3> bytes(const Rgb& c) {
   return {byte(c[0]), byte(c[1]), byte(c[2])};
 }
 
+std::string partLabel(const Part& part) {
+  const std::string name = std::filesystem::path(part.source).filename().string();
+  return name.empty() ? "part" : name;
+}
+
 }  // namespace
 
 void writeSetupPicture(const Part& part, const SetupPlan& plan, const std::string& path) {
@@ -27,7 +35,15 @@ void writeSetupPicture(const Part& part, const SetupPlan& plan, const std::strin
   for (int k = 0; k < static_cast<int>(plan.setups.size()); ++k)
     for (int t : plan.setups[k].triangles) picture.triangle_colours[t] = bytes(setupColour(k));
   for (int t : plan.unmachinable_triangles) picture.triangle_colours[t] = bytes(unmachinableColour());
-  const Image image = renderPicture(part.mesh, picture);
+  std::vector<LegendEntry> legend;
+  for (int k = 0; k < static_cast<int>(plan.setups.size()); ++k) {
+    const Setup& setup = plan.setups[k];
+    legend.push_back({setupColour(k), "setup " + std::to_string(k) + ": " + directionLabel(setup.frame.z) +
+                                          (setup.for_finishing ? " (for finishing)" : "")});
+  }
+  if (!plan.unmachinable_triangles.empty()) legend.push_back({unmachinableColour(), "no setup reaches"});
+  const std::string title = partLabel(part) + ": " + std::to_string(plan.setups.size()) + " setups, by the setup that machines each triangle";
+  const Image image = withLegend(renderPicture(part.mesh, picture), title, legend);
   try {
     writePng(image, path);
   } catch (const std::runtime_error& e) {
@@ -40,7 +56,11 @@ void writeRemainingPicture(const Part& part, const PlanResult& plan, const std::
   const PartDistance distance(part.mesh);
   const StockMesh stock = remainingStockMesh(plan.simulation.stock, plan.simulation.part, distance);
   const VerificationReport& report = plan.verification;
-  writeDeviationPicture(stock, std::max(report.leftover_max_mm, 10.0 * report.tolerance_mm), report.tolerance_mm, path);
+  char title[200];
+  std::snprintf(title, sizeof title, "%s: stock left by the plan, %.0f mm3 beyond %.3g mm", partLabel(part).c_str(),
+                report.leftover_volume_mm3, report.tolerance_mm);
+  writeDeviationPicture(stock, std::max(report.leftover_max_mm, 10.0 * report.tolerance_mm), report.tolerance_mm, path,
+                        title);
 }
 
 }  // namespace art2part
