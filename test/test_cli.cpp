@@ -7,6 +7,7 @@
 #include <cstring>
 #include <fstream>
 #include <cstdio>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sys/wait.h>
 
@@ -109,4 +110,22 @@ TEST(Cli, MisuseGivesUsageAndExitTwo) {
   EXPECT_EQ(run("frobnicate").status, 2);
   EXPECT_EQ(run("visibility " + kExample).status, 2) << "no --out";
   EXPECT_EQ(run("visibility " + kExample + " --out /tmp/x --level 9").status, 1) << "level out of range";
+}
+
+// `art2part COMMAND --help` is a request, not a mistake: that command's usage alone on stdout, exit 0, and nothing run
+// (a --help among a plan's arguments must not start a plan).
+TEST(Cli, CommandHelpPrintsItsUsageAndExitsZero) {
+  for (const char* command : {"info", "render", "visibility", "setups", "plan", "verify", "post", "urdf"}) {
+    SCOPED_TRACE(command);
+    const CliRun r = run(std::string(command) + " --help");
+    EXPECT_EQ(r.status, 0);
+    EXPECT_NE(r.out.find(std::string("usage: art2part  ") + command), std::string::npos) << r.out;
+    EXPECT_TRUE(r.err.empty()) << r.err;
+  }
+  const std::string dir = test::tempDir();
+  const CliRun plan = run("plan " + kExample + " --out " + dir + "/plan --help");
+  EXPECT_EQ(plan.status, 0);
+  EXPECT_FALSE(std::filesystem::exists(dir + "/plan")) << "--help ran the plan";
+  // Only that command: the other commands' lines are not printed.
+  EXPECT_EQ(run("info --help").out.find("visibility PART"), std::string::npos);
 }

@@ -107,7 +107,9 @@ TEST(Admissible, PermissibleIsWhatIsAdmissibleAndSeen) {
   const Cone mill = permissibleCone(setOf(sets, FinishingKind::FaceMill), vis.directions, seen, 0.1 * kPi / 180);
   ASSERT_EQ(coneSize(mill), 1);  // +z, a special direction of the part, sees the pocket's floor whole
   for (int d = 0; d < vis.directions.size(); ++d) {
-    if (coneHas(mill, d)) EXPECT_GT(vis.directions.directions[d].z(), 1 - 1e-9);
+    if (coneHas(mill, d)) {
+      EXPECT_GT(vis.directions.directions[d].z(), 1 - 1e-9);
+    }
   }
   // Surface finishing of the floor: every direction that sees it whole and is not behind it (side visibility also
   // counts directions a hair past its plane).
@@ -215,7 +217,8 @@ TEST(PlanarFinishing, FinishesAPocketedBlockFromAboveToItsNominalFaces) {
   // What is left over the faces finished: every piece of leftover inside the part's outline (the stock beyond its
   // sides is no target here) is thinner than the tolerance.
   for (const LeftoverRegion& r : report.regions) {
-    if (r.box.min.x() > -1e-6 && r.box.max.x() < 60 + 1e-6 && r.box.min.y() > -1e-6 && r.box.max.y() < 40 + 1e-6)
+    if (r.box.min.x() > -1e-6 && r.box.max.x() < 60 + 1e-6 && r.box.min.y() > -1e-6 && r.box.max.y() < 40 + 1e-6) {
       EXPECT_LE(r.max_thickness_mm, 0.01) << "leftover at " << r.thickest_point.transpose();
+    }
   }
 }

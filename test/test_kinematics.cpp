@@ -57,7 +57,7 @@ Placement skewPlacement(const Machine& machine) {
 class EachMachine : public ::testing::TestWithParam<std::string> {};
 
 INSTANTIATE_TEST_SUITE_P(Machines, EachMachine,
-                         ::testing::Values("trunnion_ac", "trunnion_bc", "head_head_bc", "mill_3axis"));
+                         ::testing::Values("trunnion_ac", "trunnion_5axis", "trunnion_bc", "head_head_bc", "mill_3axis"));
 
 class EachFiveAxisMachine : public ::testing::TestWithParam<std::string> {};
 

@@ -462,7 +462,9 @@ TEST(SetupCli, PlanWritesPlanJsonWithTheSetups) {
   ASSERT_TRUE(j["faces"].is_array());
   EXPECT_EQ(j["faces"].size(), j["part"]["faces"].get<std::size_t>());
   for (const auto& f : j["faces"])
-    if (f["status"] != "finished") EXPECT_TRUE(f.contains("reason")) << f.dump();
+    if (f["status"] != "finished") {
+      EXPECT_TRUE(f.contains("reason")) << f.dump();
+    }
   for (const char* stage : {"load", "visibility", "setups", "roughing", "finishing", "verification", "post"})
     EXPECT_TRUE(j["timings"].contains(stage)) << stage;
   for (const char* file : {"setups.png", "mesh.stl", "visibility.bits", "toolpaths.csv", "tools.json", "program.ngc",

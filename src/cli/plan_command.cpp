@@ -10,26 +10,19 @@
 // visibility contract files (directions.csv, visibility.bits).
 #include <algorithm>
 #include <chrono>
-#include <fstream>
 #include <iostream>
-#include <map>
-#include <optional>
+#include <memory>
+#include <string>
+
+#include <unistd.h>
 
 #include "arguments.h"
-#include "art2part/post/fixture_placement.h"
-#include "art2part/post/joint_trajectory.h"
-#include "art2part/post/machine_program.h"
-#include "art2part/post/post_files.h"
-#include "art2part/render/palette.h"
-#include "art2part/render/picture.h"
+#include "art2part/plan/plan_folder.h"
 #include "art2part/plan/plan_json.h"
 #include "art2part/plan/plan_part.h"
 #include "art2part/roughing/roughing.h"
 #include "art2part/setup/setup_report.h"
-#include "art2part/simulation/part_distance.h"
-#include "art2part/simulation/stock_mesh.h"
 #include "art2part/simulation/verify.h"
-#include "art2part/visibility/analysis.h"
 #include "commands.h"
 
 #ifndef ART2PART_CONFIG_DIR
@@ -42,41 +35,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-void writeJson(const nlohmann::json& j, const std::string& path) {
-  std::ofstream out(path);
-  if (!out) throw InputError("cannot write '" + path + "'");
-  out << j.dump() << "\n";
-  if (!out) throw InputError("cannot write '" + path + "'");
-}
-
-// Setup colours, far from the red of what no setup reaches; after ten they repeat darker.
-std::array<unsigned char, 3> setupColour(int k) {
-  static const Rgb palette[] = {{0.25f, 0.45f, 0.85f}, {0.30f, 0.70f, 0.35f}, {0.95f, 0.78f, 0.20f},
-                                {0.60f, 0.40f, 0.80f}, {0.20f, 0.75f, 0.80f}, {0.95f, 0.55f, 0.15f},
-                                {0.55f, 0.35f, 0.20f}, {0.90f, 0.50f, 0.75f}, {0.55f, 0.60f, 0.30f},
-                                {0.50f, 0.50f, 0.50f}};
-  const int n = sizeof palette / sizeof palette[0];
-  const float shade = 1.0f / static_cast<float>(1 + k / n);
-  const Rgb& c = palette[k % n];
-  return {static_cast<unsigned char>(255 * c[0] * shade), static_cast<unsigned char>(255 * c[1] * shade),
-          static_cast<unsigned char>(255 * c[2] * shade)};
-}
-
-// The part coloured by the setup that machines each triangle, unmachinable triangles red.
-void writeSetupPicture(const Part& part, const SetupPlan& plan, const std::string& path) {
-  PictureOptions picture;
-  picture.triangle_colours.assign(part.mesh.triangleCount(), {220, 220, 220});
-  for (int k = 0; k < static_cast<int>(plan.setups.size()); ++k)
-    for (int t : plan.setups[k].triangles) picture.triangle_colours[t] = setupColour(k);
-  for (int t : plan.unmachinable_triangles) picture.triangle_colours[t] = {230, 25, 25};
-  const Image image = renderPicture(part.mesh, picture);
-  try {
-    writePng(image, path);
-  } catch (const std::runtime_error& e) {
-    throw InputError(e.what());  // a path the user gave us
-  }
-}
 
 RoughingOptions roughingOptionsFrom(const Arguments& a) {
   RoughingOptions options;
@@ -94,21 +52,22 @@ RoughingOptions roughingOptionsFrom(const Arguments& a) {
   return options;
 }
 
-// Every setup clamps the part anew, facing up on the machine's table (fixture_placement.h), the stock as roughing saw it.
-std::map<int, Clamping> clampingsFacingUp(const Machine& machine, const Part& part, const SetupPlan& plan,
-                                          const RoughingOptions& roughing) {
-  const Box stock = boundingBox(roughingStock(part, roughing));
-  std::map<int, Clamping> clampings;
-  for (int k = 0; k < static_cast<int>(plan.setups.size()); ++k)
-    clampings[k] = clampFacingUp(machine, plan.setups[k].frame, stock);
-  return clampings;
-}
-
-void writeRemainingPicture(const Part& part, const VerificationState& state, const VerificationReport& report,
-                           const std::string& path) {
-  const PartDistance distance(part.mesh);
-  const StockMesh stock = remainingStockMesh(state.stock, state.part, distance);
-  writeDeviationPicture(stock, std::max(report.leftover_max_mm, 10.0 * report.tolerance_mm), report.tolerance_mm, path);
+// On a terminal, the stage, its share done and what it works on, one line rewritten in place at most four times a
+// second; on a pipe or a file, nothing (a log should not fill with carriage returns).
+ProgressSink terminalProgress() {
+  if (!isatty(STDERR_FILENO)) return {};
+  auto last = std::make_shared<Clock::time_point>();
+  auto last_stage = std::make_shared<std::string>();
+  return [last, last_stage](const ProgressReport& p) {
+    const auto now = Clock::now();
+    if (p.stage == *last_stage && now - *last < std::chrono::milliseconds(250)) return true;
+    *last = now;
+    *last_stage = p.stage;
+    std::string line = p.stage + " " + std::to_string(static_cast<int>(100 * p.fraction)) + "% " + p.message;
+    if (line.size() > 110) line.resize(110);
+    std::cerr << "\r\033[K" << line << std::flush;
+    return true;
+  };
 }
 
 }  // namespace
@@ -140,43 +99,17 @@ int runPlan(const std::vector<std::string>& args) {
   auto start = Clock::now();
   const Part part = loadPart(path, loadOptionsFrom(a));
   const double load_seconds = secondsSince(start);
-  const PlanResult plan = planPart(part, library, plan_options);
+  const ProgressSink progress = terminalProgress();
+  const PlanResult plan = planPart(part, library, plan_options, progress);
+  if (progress) std::cerr << "\r\033[K" << std::flush;
 
-  start = Clock::now();
-  writeVisibilityFiles(part, plan.visibility, out);
-  writeSetupPicture(part, plan.setups, out + "/setups.png");
-  writeToolpathsCsv(plan.toolpath, out + "/toolpaths.csv");
-  writeToolsJson(plan.tools, out + "/tools.json");
-  const double write_seconds = secondsSince(start);
-
-  std::string post_error;
-  double post_seconds = 0;
-  FixturePlan placement;
-  if (plan.verified) writeRemainingPicture(part, plan.simulation, plan.verification, out + "/remaining.png");
-  if (!plan.toolpath.empty()) {
-    start = Clock::now();
-    try {  // a machine too small for the part is a finding of the plan, not a failure of it
-      placement = placeSetups(machine, plan.toolpath, plan.tools,
-                              clampingsFacingUp(machine, part, plan.setups, plan_options.roughing));
-      if (!placement.allReachable()) throw InputError(placement.unreachableText());
-      PostOptions post_options;
-      post_options.fixtures = placement.fixtures();
-      const MachineProgram program = buildMachineProgram(machine, plan.toolpath, plan.tools, part.source, post_options);
-      const JointTrajectory trajectory = parameterizeTrajectory(machine, programWaypoints(program), TrajectoryOptions{});
-      writePostFiles(program, trajectory, 50, out);
-    } catch (const InputError& e) {
-      post_error = e.what();
-      std::cerr << "art2part: no program for " << machine.name << ": " << post_error << "\n";
-    }
-    post_seconds = secondsSince(start);
-  }
-  nlohmann::json j = planJson(part, plan);
-  j["timings"]["load"] = load_seconds;
-  j["timings"]["write"] = write_seconds;
-  j["timings"]["post"] = post_seconds;
-  j["program"] = {{"machine", machine.name}, {"written", !plan.toolpath.empty() && post_error.empty()}, {"error", post_error}};
-  recordFixtures(j, placement);
-  writeJson(j, out + "/plan.json");
+  PlanFolderOptions folder;
+  folder.program.machine = machine;
+  folder.program.clampings = setupClampings(machine, part, plan.setups, plan_options.roughing);
+  const WrittenPlan written = writePlanFolder(out, part, plan, folder, {{"load", load_seconds}});
+  if (!written.program_written)
+    std::cerr << "art2part: no program for " << machine.name << ": " << written.program_error << "\n";
+  const nlohmann::json& j = written.plan;
   std::cout << "timings:     ";
   for (const auto& [stage, seconds] : j["timings"].items()) std::cout << " " << stage << " " << seconds.get<double>() << " s";
   std::cout << "\n";
@@ -184,7 +117,8 @@ int runPlan(const std::vector<std::string>& args) {
   std::cout << "part:         " << path << " (" << part.mesh.triangleCount() << " triangles, "
             << plan.visibility.directions.size() << " directions)\n"
             << setupPlanText(part, plan.setups, plan.visibility.directions);
-  for (const SetupPlacement& p : placement.setups) std::cout << "fixture:      " << placementText(machine, p) << "\n";
+  for (const SetupPlacement& p : written.placement.setups)
+    std::cout << "fixture:      " << placementText(machine, p) << "\n";
   const RoughingPlan& roughing = plan.roughing;
   if (roughing.closed_open_mesh_edges > 0)
     std::cout << "solid:        the mesh is open (" << roughing.closed_open_mesh_edges
@@ -212,7 +146,8 @@ int runPlan(const std::vector<std::string>& args) {
     std::cout << "verification: " << (report.passed() ? "" : "FAILED: ") << report.gouges << " gouges, " << report.collisions
               << " collisions, " << static_cast<long>(report.removed_volume_mm3) << " of "
               << static_cast<long>(report.stock_volume_mm3 - report.part_volume_mm3) << " mm3 of stock removed, "
-              << static_cast<long>(report.leftover_volume_mm3) << " mm3 left beyond the tolerance\n";
+              << static_cast<long>(report.leftover_volume_mm3) << " mm3 left beyond the tolerance\n"
+              << "              " << j["verification"]["what_is_left"].get<std::string>() << "\n";
   }
   std::cout << "wrote:        " << out << "/{plan.json,toolpaths.csv,tools.json,mesh.stl,program.ngc,setups.png,"
             << "remaining.png,directions.csv,visibility.bits}\n";

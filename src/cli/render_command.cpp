@@ -1,7 +1,9 @@
 // art2part render PART --out FILE.png [--width W] [--height H] [--units U] [--tolerance MM] [--edges]
+#include <filesystem>
 #include <iostream>
 
 #include "arguments.h"
+#include "art2part/render/annotate.h"
 #include "art2part/render/palette.h"
 #include "art2part/render/picture.h"
 #include "commands.h"
@@ -20,7 +22,8 @@ int runRender(const std::vector<std::string>& args) {
     throw UsageError("--width and --height must be between 16 and 8192");
   options.triangle_colours = triangleColoursByFace(part);
   options.draw_edges = a.flag("edges");
-  const Image image = renderPicture(part.mesh, options);
+  const std::string name = std::filesystem::path(path).filename().string();
+  const Image image = withLegend(renderPicture(part.mesh, options), name + ": faces by surface type", surfaceLegend(part));
   try {
     writePng(image, a.value("out"));
   } catch (const std::runtime_error& e) {

@@ -2,9 +2,11 @@
 //                         [--resolution PX] [--samples N] [--threads N] [--units U] [--tolerance MM]
 #include <chrono>
 #include <iomanip>
+#include <filesystem>
 #include <iostream>
 
 #include "arguments.h"
+#include "art2part/render/annotate.h"
 #include "art2part/render/palette.h"
 #include "art2part/render/picture.h"
 #include "art2part/visibility/analysis.h"
@@ -43,7 +45,16 @@ void writeConePicture(const Part& part, const VisibilityResult& r, const std::st
     picture.triangle_colours.push_back({static_cast<unsigned char>(255 * c[0]), static_cast<unsigned char>(255 * c[1]),
                                         static_cast<unsigned char>(255 * c[2])});
   }
-  const Image image = renderPicture(part.mesh, picture);
+  ColourScale scale;
+  scale.caption = "solid angle of the cone";
+  scale.unit = "sr";
+  scale.low = 0;
+  scale.high = kTwoPi;
+  scale.colour = [](double v) { return rampColour(v / kTwoPi); };
+  scale.extra = {{Rgb{0.9f, 0.1f, 0.1f}, "no direction reaches"}, {rampColour(1), "a whole hemisphere (2 pi sr)"}};
+  const std::string title = std::filesystem::path(part.source).filename().string() +
+                            ": from how many directions each triangle is visible";
+  const Image image = withScale(renderPicture(part.mesh, picture), title, scale);
   try {
     writePng(image, path);
   } catch (const std::runtime_error& e) {

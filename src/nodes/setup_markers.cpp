@@ -1,5 +1,7 @@
 #include "setup_markers.h"
 
+#include "art2part/render/palette.h"
+
 #include "marker_helpers.h"
 
 #include <Eigen/Geometry>
@@ -236,19 +238,6 @@ std::vector<geometry_msgs::TransformStamped> setupTransforms(const std::vector<M
 
 // ---- rviz --------------------------------------------------------------------------------------------------------
 
-RgbColour setupColour(int k) {
-  static const RgbColour kColours[] = {
-      {0.12f, 0.47f, 0.71f}, {1.00f, 0.50f, 0.05f}, {0.17f, 0.63f, 0.17f}, {0.58f, 0.40f, 0.74f},
-      {0.09f, 0.75f, 0.81f}, {0.89f, 0.47f, 0.76f}, {0.74f, 0.74f, 0.13f}, {0.55f, 0.34f, 0.29f},
-      {0.40f, 0.40f, 0.90f}, {0.60f, 0.60f, 0.60f}};
-  constexpr int n = sizeof kColours / sizeof kColours[0];
-  const int i = k < 0 ? 0 : k;
-  RgbColour c = kColours[i % n];
-  const float lighten = std::min(0.6f, 0.3f * static_cast<float>(i / n));  // later rounds: the same hues, lighter
-  for (float& v : c) v += (1.0f - v) * lighten;
-  return c;
-}
-
 visualization_msgs::MarkerArray setupMarkers(const Part& part, const SetupPlan& plan, const std::string& frame_id) {
   visualization_msgs::MarkerArray array;
   visualization_msgs::Marker clear;
@@ -294,7 +283,7 @@ visualization_msgs::MarkerArray setupMarkers(const Part& part, const SetupPlan& 
   surface.points.reserve(3 * static_cast<std::size_t>(T));
   surface.colors.reserve(3 * static_cast<std::size_t>(T));
   for (int t = 0; t < T; ++t) {
-    const RgbColour c = owner[t] >= 0 ? setupColour(owner[t]) : owner[t] == -2 ? RgbColour{0.9f, 0.1f, 0.1f}
+    const RgbColour c = owner[t] >= 0 ? setupColour(owner[t]) : owner[t] == -2 ? unmachinableColour()
                                                                                : RgbColour{0.25f, 0.25f, 0.25f};
     for (int i = 0; i < 3; ++i) {
       surface.points.push_back(toPointMsg(part.mesh.corner(t, i)));

@@ -2,6 +2,8 @@
 // setup_<k> and the rviz picture of a plan. Thin functions of plain data, so they can be tested without a node.
 #pragma once
 
+#include "art2part/render/palette.h"  // setupColour: one palette for pictures and rviz
+
 #include <memory>
 #include <string>
 #include <vector>
@@ -71,8 +73,7 @@ std::vector<geometry_msgs::TransformStamped> setupTransforms(const std::vector<M
 
 using RgbColour = std::array<float, 3>;
 
-// Colour of setup k: ten well separated colours (no red: red is for unmachinable), then the same hues lighter.
-RgbColour setupColour(int k);
+
 
 // DELETEALL first (the markers of an earlier plan go), then per setup an ARROW (ns "setup_arrows", id k) from the
 // centre of the part's box along its direction to a quarter box diagonal beyond the box, and a TEXT_VIEW_FACING

@@ -17,6 +17,12 @@ Rgb surfaceColour(const Face& face);
 // A perceptually ordered ramp for a value in 0..1 (dark blue, teal, green, yellow), clamped outside.
 Rgb rampColour(double value);
 
+// Setup k's colour (pictures and rviz alike), far from the red of what no setup reaches; after ten they repeat darker.
+Rgb setupColour(int k);
+
+// What no setup reaches.
+Rgb unmachinableColour();
+
 // One 8-bit colour per triangle of the part, by its face.
 std::vector<std::array<unsigned char, 3>> triangleColoursByFace(const Part& part);
 

@@ -32,7 +32,9 @@ StockMesh remainingStockMesh(const Stock& stock, const MeshDexels& part, const P
 // deeper than the tolerance.
 std::vector<std::array<unsigned char, 3>> deviationColours(const std::vector<double>& deviation, double scale,
                                                            double tolerance);
-// A PNG of the mesh so coloured (OSMesa). Throws InputError when the file cannot be written.
-void writeDeviationPicture(const StockMesh& stock_mesh, double scale, double tolerance, const std::string& path);
+// A PNG of the mesh so coloured (OSMesa), with `title` above it and the colour scale (mm) beside it. Throws InputError
+// when the file cannot be written.
+void writeDeviationPicture(const StockMesh& stock_mesh, double scale, double tolerance, const std::string& path,
+                           const std::string& title = "stock left");
 
 }  // namespace art2part

@@ -1,6 +1,8 @@
 // plan.json (plan_json.h).
 #include "art2part/plan/plan_json.h"
 
+#include <cstdio>
+
 #include <cmath>
 
 #include "art2part/setup/setup_report.h"
@@ -84,8 +86,23 @@ nlohmann::json faceFinishJson(const Part& part, const FaceFinish& face) {
   return j;
 }
 
+// "passed" says nothing gouges or collides; this says whether the part came out: what stock is left beyond the
+// tolerance, how much and how thick, so a passed plan never reads as a finished part.
+std::string whatIsLeft(const VerificationReport& report) {
+  char text[200];
+  if (report.leftover_volume_mm3 <= 0) {
+    std::snprintf(text, sizeof text, "finished: no stock left beyond %.3g mm of the part", report.tolerance_mm);
+  } else {
+    std::snprintf(text, sizeof text, "not finished: %.0f mm3 of stock left beyond %.3g mm of the part, up to %.2f mm thick",
+                  report.leftover_volume_mm3, report.tolerance_mm, report.leftover_max_mm);
+  }
+  return text;
+}
+
 nlohmann::json verificationJson(const VerificationReport& report) {
   return {{"gouges", report.gouges},
+          {"what_is_left", whatIsLeft(report)},
+          {"finished", report.leftover_volume_mm3 <= 0},
           {"collisions", report.collisions},
           {"passed", report.passed()},
           {"worst_gouge_mm", report.worst_gouge_mm},

@@ -17,6 +17,20 @@ Rgb surfaceColour(const Face& face) {
   return c;
 }
 
+Rgb setupColour(int k) {
+  static const Rgb palette[] = {{0.25f, 0.45f, 0.85f}, {0.30f, 0.70f, 0.35f}, {0.95f, 0.78f, 0.20f},
+                                {0.60f, 0.40f, 0.80f}, {0.20f, 0.75f, 0.80f}, {0.95f, 0.55f, 0.15f},
+                                {0.55f, 0.35f, 0.20f}, {0.90f, 0.50f, 0.75f}, {0.55f, 0.60f, 0.30f},
+                                {0.50f, 0.50f, 0.50f}};
+  const int n = sizeof palette / sizeof palette[0];
+  const int i = k < 0 ? 0 : k;
+  const float shade = 1.0f / static_cast<float>(1 + i / n);
+  const Rgb& c = palette[i % n];
+  return {c[0] * shade, c[1] * shade, c[2] * shade};
+}
+
+Rgb unmachinableColour() { return {0.90f, 0.10f, 0.10f}; }
+
 Rgb rampColour(double value) {
   // Stops of a viridis-like ramp; linear in between.
   static const Rgb stops[5] = {

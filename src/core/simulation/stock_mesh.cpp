@@ -1,5 +1,9 @@
 #include "art2part/simulation/stock_mesh.h"
 
+#include <cstdio>
+
+#include "art2part/render/annotate.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -176,11 +180,21 @@ std::vector<std::array<unsigned char, 3>> deviationColours(const std::vector<dou
   return colours;
 }
 
-void writeDeviationPicture(const StockMesh& stock_mesh, double scale, double tolerance, const std::string& path) {
+void writeDeviationPicture(const StockMesh& stock_mesh, double scale, double tolerance, const std::string& path,
+                           const std::string& title) {
   if (stock_mesh.mesh.triangles.empty()) throw InputError("no stock is left to draw in " + path);
   PictureOptions options;
   options.triangle_colours = deviationColours(stock_mesh.deviation, scale, tolerance);
-  const Image image = renderPicture(stock_mesh.mesh, options);
+  ColourScale legend;
+  legend.caption = "stock above the part";
+  legend.unit = "mm";
+  legend.low = 0;
+  legend.high = scale;
+  legend.colour = [scale](double v) { return rampColour(v / std::max(scale, 1e-9)); };
+  char gouge[80];
+  std::snprintf(gouge, sizeof gouge, "gouge deeper than %.3g mm", tolerance);
+  legend.extra = {{Rgb{0.9f, 0.1f, 0.1f}, gouge}};
+  const Image image = withScale(renderPicture(stock_mesh.mesh, options), title, legend);
   try {
     writePng(image, path);
   } catch (const std::runtime_error& e) {

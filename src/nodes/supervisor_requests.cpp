@@ -1,0 +1,111 @@
+// The cell supervisor's request checks (supervisor_requests.h).
+#include "supervisor_requests.h"
+
+#include <algorithm>
+#include <cmath>
+#include <ctime>
+#include <filesystem>
+
+#include "art2part/geometry/mesh.h"  // InputError
+
+namespace art2part {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kMaxScallopM = 0.001;  // a 1 mm cusp is no finish: beyond it the goal has a unit slip
+
+// The path with `..`, `.` and symlinks resolved as far as it exists.
+fs::path resolved(const fs::path& p) {
+  std::error_code error;
+  fs::path r = fs::weakly_canonical(p, error);
+  return error ? p.lexically_normal() : r;
+}
+
+bool inside(const fs::path& path, const fs::path& folder) {
+  auto f = folder.begin(), p = path.begin();
+  for (; f != folder.end(); ++f, ++p) {
+    if (f->empty()) continue;  // a trailing slash
+    if (p == path.end() || *p != *f) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+PlanOptions planOptionsFrom(const PlanPartGoal& goal) {
+  PlanOptions options;
+  if (!goal.mode.empty() && goal.mode != "3axis" && goal.mode != "5axis")
+    throw InputError("mode is \"3axis\" or \"5axis\", not \"" + goal.mode + "\"");
+  options.setups.mode = goal.mode == "5axis" ? MachineMode::FiveAxis : MachineMode::ThreeAxis;
+  options.roughing.five_axis = goal.mode == "5axis";
+  options.finish = !goal.roughing_only;
+  if (!std::isfinite(goal.scallop_m) || goal.scallop_m < 0 || goal.scallop_m > kMaxScallopM)
+    throw InputError("scallop_m is metres, 0 (default 0.01 mm) to 0.001; got " + std::to_string(goal.scallop_m));
+  if (goal.scallop_m > 0) options.finishing.surface.scallop = goal.scallop_m * 1000;
+  return options;
+}
+
+std::string machineFileFor(const PlanPartGoal& goal, const SupervisorConfig& config) {
+  std::string name = goal.machine.empty() ? (goal.mode == "5axis" ? config.machine_5axis : config.machine_3axis)
+                                          : goal.machine;
+  if (name.find('/') != std::string::npos || name == "." || name == ".." || name.empty())
+    throw InputError("machine names a machine of the cell by name (e.g. vmc_3axis), not a path: '" + goal.machine + "'");
+  if (fs::path(name).extension() != ".yaml") name += ".yaml";
+  const fs::path file = fs::path(config.machines_dir) / name;
+  if (!fs::is_regular_file(file)) {
+    std::string known;
+    std::error_code error;
+    for (const auto& entry : fs::directory_iterator(config.machines_dir, error))
+      if (entry.path().extension() == ".yaml") known += (known.empty() ? "" : ", ") + entry.path().stem().string();
+    throw InputError("no machine '" + fs::path(name).stem().string() + "' in the cell (machines: " + known + ")");
+  }
+  return file.string();
+}
+
+std::string confinedPartFile(const std::string& requested, const std::vector<std::string>& folders) {
+  const std::string refusal = "part_file '" + requested + "' is outside the configured part folders";
+  if (requested.empty() || folders.empty()) throw InputError(refusal);
+  fs::path p(requested);
+  if (p.is_relative()) p = fs::path(folders.front()) / p;
+  const fs::path r = resolved(p);
+  for (const std::string& folder : folders)
+    if (!folder.empty() && inside(r, resolved(folder))) return r.string();
+  throw InputError(refusal);
+}
+
+std::string newPlanFolderName(const std::string& root, const std::string& part_source) {
+  std::string stem = fs::path(part_source).stem().string();
+  for (char& c : stem)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_')) c = '_';
+  if (stem.empty()) stem = "part";
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char stamp[32];
+  std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", &utc);
+  const std::string base = stem + "_" + stamp;
+  std::string name = base;
+  for (int n = 2; fs::exists(fs::path(root) / name); ++n) name = base + "_" + std::to_string(n);
+  return name;
+}
+
+void checkPlanName(const std::string& name) {
+  if (name.empty() || name == "." || name == ".." || name.find('/') != std::string::npos)
+    throw InputError("a plan is named by its folder under the output root (as list_plans gives it), not '" + name + "'");
+}
+
+std::vector<std::string> listPlanFolders(const std::string& root) {
+  std::vector<std::pair<fs::file_time_type, std::string>> found;
+  std::error_code error;
+  for (const auto& entry : fs::directory_iterator(root, error))
+    if (entry.is_directory() && fs::is_regular_file(entry.path() / "plan.json"))
+      found.emplace_back(fs::last_write_time(entry.path() / "plan.json", error), entry.path().filename().string());
+  std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::vector<std::string> names;
+  for (auto& f : found) names.push_back(std::move(f.second));
+  return names;
+}
+
+}  // namespace art2part
