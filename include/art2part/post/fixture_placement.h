@@ -74,7 +74,8 @@ FixturePlan placeSetups(const Machine& machine, const Toolpath& path, const std:
 std::string placementText(const Machine& machine, const SetupPlacement& placement);
 
 // ---- plan.json ----
-// One setup's placement as plan.json records it under setups[k].fixture: machine, reachable, reason, origin_mm and
+// One setup's placement as plan.json records it under setups[k].fixture: machine, reachable, reason, note (for a
+// person: where the stock sits, or why the machine cannot reach the setup), origin_mm and
 // rotation (the part frame in the table frame: p_table = rotation * p_part + origin_mm; rotation row-major), rpy_deg
 // (the same rotation as roll, pitch, yaw about fixed x, y, z), anchor_mm, table_point_mm, yaw_deg, first_joints (mm,
 // deg), candidates_tried.

@@ -119,7 +119,8 @@ std::string toolRow(const json& tool) {
 std::string fixtureNote(const json& setup) {
   if (setup.contains("fixture") && setup["fixture"].is_object()) {
     const json& f = setup["fixture"];
-    std::string text = "Part frame on the table at " + vector3(f.value("translation", json())) + " mm";
+    std::string text = "Clamp the part with the setup direction " + direction(setup.value("direction", json())) +
+                       " pointing up; part frame on the table at " + vector3(f.value("origin_mm", json())) + " mm";
     if (f.contains("note")) text += "; " + f["note"].get<std::string>();
     return escape(text);
   }

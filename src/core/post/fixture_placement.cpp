@@ -244,11 +244,15 @@ SetupFrame frameFrom(const nlohmann::json& setup, const std::string& where) {
 }  // namespace
 
 nlohmann::json fixtureJson(const std::string& machine, const SetupPlacement& p) {
+  char note[200];
+  std::snprintf(note, sizeof note, "the stock's bottom middle at (%.1f, %.1f, %.1f) mm on the table of %s, turned %g deg",
+                p.table_point.x(), p.table_point.y(), p.table_point.z(), machine.c_str(), p.yaw_deg);
   nlohmann::json rotation = nlohmann::json::array();
   for (int i = 0; i < 3; ++i) rotation.push_back(vectorJson(p.fixture.rotation.row(i).transpose()));
   return {{"machine", machine},
           {"reachable", p.reachable},
           {"reason", p.reason},
+          {"note", p.reachable ? std::string(note) : machine + " cannot reach this setup: " + p.reason},
           {"origin_mm", vectorJson(p.fixture.origin)},
           {"rotation", rotation},
           {"rpy_deg", vectorJson(rpyFromRotation(p.fixture.rotation) / kDegree)},
