@@ -117,27 +117,24 @@ class RoughingPlannerNode {
   }
 
   // planRoughing over every setup (the core's tool choice, rest passes and stock between setups, unchanged), with
-  // feedback before each setup and for each operation planned.
+  // feedback after every level; a cancel stops it within a level.
   RoughingPlan roughEachSetup(const Part& part, const SetupPlan& setups, const ToolLibrary& library,
                               const RoughingOptions& options, PlanRoughingFeedback& f) {
     const int n = static_cast<int>(setups.setups.size());
     f.stage = "roughing";
     f.setups = static_cast<uint32_t>(n);
-    std::size_t reported = 0;  // operations already told of
-    RoughingPlan plan = planRoughing(part, setups, library, options, [&](int k, const RoughingPlan& so_far) {
-      for (; reported < so_far.operations.size(); ++reported) {
-        const RoughingOperation& op = so_far.operations[reported];
-        f.levels_done += static_cast<uint32_t>(op.levels.size());
-        f.operations += 1;
-        f.operation = "setup " + std::to_string(op.setup) + ": " + op.kind + ", " + op.tool + ", " +
-                      std::to_string(op.levels.size()) + " levels, " + std::to_string(op.path.size()) + " points";
-      }
-      f.setup = static_cast<uint32_t>(std::min(k + 1, n));
-      f.fraction = static_cast<double>(k) / std::max(n, 1);
-      feedback(f);
+    RoughingPlan plan = planRoughing(part, setups, library, options, [&](const ProgressReport& p) {
+      f.setup = static_cast<uint32_t>(std::min(n, static_cast<int>(p.fraction * n) + 1));
+      f.fraction = p.fraction;
+      f.levels_done = static_cast<uint32_t>(p.done);
+      f.operation = p.message;
+      server_.publishFeedback(f);
+      return !server_.isPreemptRequested() && ros::ok();
     });
+    if (plan.cancelled) throw Preempted();
     f.stage = "done";
     f.fraction = 1;
+    f.operations = static_cast<uint32_t>(plan.operations.size());
     server_.publishFeedback(f);
     return plan;
   }
