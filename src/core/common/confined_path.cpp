@@ -80,7 +80,7 @@ bool isInsideFolder(const fs::path& path, const fs::path& root) {
 ConfinedPath confinePath(const FolderConfinement& confinement, const std::string& requested) {
   ConfinedPath out;
   if (requested.empty()) {
-    out.refusal = "the path is empty: name a file or folder in the configured " + confinement.description;
+    out.refusal = "'': no path given: name a file or folder in the configured " + confinement.description;
     return out;
   }
   if (requested.find('\0') != std::string::npos) {
