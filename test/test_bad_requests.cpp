@@ -414,8 +414,8 @@ TEST_F(BadRequests, ZEveryNodeStillServes) {
   std::lock_guard<std::mutex> lock(mutex);
   for (const std::string node : {"part_server", "visibility", "setup_planner", "roughing_planner", "finishing_planner",
                                  "verification", "controller_bridge", "simulated_controller"}) {
-    const auto it = statuses.find("/" + node + ": requests");
-    ASSERT_NE(it, statuses.end()) << "no /diagnostics status from " << node;
+    const auto it = statuses.find(node + ": requests");
+    ASSERT_NE(it, statuses.end()) << "no /diagnostics status from " << node << " (" << statuses.size() << " statuses)";
     std::map<std::string, std::string> values;
     for (const auto& kv : it->second.values) values[kv.key] = kv.value;
     EXPECT_GT(std::stol(values["served"]), 0) << node;
