@@ -76,11 +76,12 @@ class SimulatedController {
   }
 
   void finish(int code, const std::string& reason, bool preempted = false) {
-    outcome_ = preempted ? RequestOutcome::Cancelled
+    const bool rejected =
+        code == FollowJointTrajectoryResult::INVALID_GOAL || code == FollowJointTrajectoryResult::INVALID_JOINTS;
+    outcome_ = preempted                                       ? RequestOutcome::Cancelled
                : code == FollowJointTrajectoryResult::SUCCESSFUL ? RequestOutcome::Served
-               : code == FollowJointTrajectoryResult::INVALID_GOAL || code == FollowJointTrajectoryResult::INVALID_JOINTS
-                   ? RequestOutcome::Refused
-                   : RequestOutcome::Failed;
+               : rejected                                      ? RequestOutcome::Refused
+                                                               : RequestOutcome::Failed;
     outcome_message_ = reason;
     FollowJointTrajectoryResult result;
     result.error_code = code;

@@ -8,8 +8,9 @@
 //   topics:   /diagnostics (node_diagnostics.h)
 // Bad input (missing folder, malformed file, unknown tool, bad numbers) answers success=false with the reason; the node
 // stays up. The folder must lie under the output root, the part file in a part folder or under the output root (a
-// plan's mesh.stl); any other path is refused before it is opened. A path that gouges or collides is success=true, passed=false. Requests run in parallel (AsyncSpinner);
-// when they finish out of order, the markers shown are those of the most recent request.
+// plan's mesh.stl); any other path is refused before it is opened. A path that gouges or collides is success=true,
+// passed=false. Requests run in parallel (AsyncSpinner); when they finish out of order, the markers shown are those
+// of the most recent request.
 #include <ros/ros.h>
 
 #include <atomic>

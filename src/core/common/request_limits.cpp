@@ -1,8 +1,7 @@
 #include "art2part/common/request_limits.h"
 
-#include <cmath>
-#include <cstdio>
 #include <cstring>
+#include <sstream>
 
 #include "art2part/geometry/mesh.h"
 
@@ -11,9 +10,9 @@ namespace art2part {
 namespace {
 
 std::string number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
+  std::ostringstream text;  // as %g: 5, 0.0003, 1e-05, nan, inf
+  text << value;
+  return text.str();
 }
 
 std::string withUnit(double value, const RequestRange& range) {
