@@ -9,6 +9,7 @@
 #include <ros/ros.h>
 
 #include <art2part/AnalyseVisibilityAction.h>
+#include <art2part/FollowJointTrajectoryAction.h>
 #include <art2part/LoadPart.h>
 #include <art2part/PlanFinishingAction.h>
 #include <art2part/PlanRoughingAction.h>
@@ -54,6 +55,7 @@ using Client = actionlib::SimpleActionClient<Action>;
 std::unique_ptr<Client<AnalyseVisibilityAction>> visibility;
 std::unique_ptr<Client<PlanRoughingAction>> roughing;
 std::unique_ptr<Client<PlanFinishingAction>> finishing;
+std::unique_ptr<Client<FollowJointTrajectoryAction>> controller;
 
 // The message with `path` cut out: what must be the same for a file that exists and one that does not.
 std::string without(const std::string& message, const std::string& path) {
@@ -140,8 +142,20 @@ class BadRequests : public ::testing::Test {
     ASSERT_TRUE(visibility->waitForServer(ros::Duration(60)));
     ASSERT_TRUE(roughing->waitForServer(ros::Duration(60)));
     ASSERT_TRUE(finishing->waitForServer(ros::Duration(60)));
+    ASSERT_TRUE(controller->waitForServer(ros::Duration(60)));
     const LoadPart::Response block = load((kParts / ("block_" + kPid + ".stl")).string(), 0, "block");
     ASSERT_TRUE(block.success) << block.message;
+  }
+
+  // What this run wrote: every entry whose name ends in its pid.
+  static void TearDownTestSuite() {
+    for (const fs::path& dir : {kParts, kPlans})
+      for (const fs::directory_entry& entry : fs::directory_iterator(dir)) {
+        const std::string stem = entry.path().stem().string();
+        const std::string suffix = "_" + kPid;
+        if (stem.size() > suffix.size() && stem.compare(stem.size() - suffix.size(), suffix.size(), suffix) == 0)
+          fs::remove_all(entry.path());
+      }
   }
 
   const std::string block_file = (kParts / ("block_" + kPid + ".stl")).string();
@@ -351,6 +365,23 @@ TEST_F(BadRequests, RunProgramPathsAndNumbers) {
   }
 }
 
+// The controller's goal: tolerances NaN, negative, or in mm where metres are meant; rejected before a joint moves.
+TEST_F(BadRequests, ControllerTolerances) {
+  FollowJointTrajectoryGoal goal;
+  goal.trajectory.joint_names = {"X"};
+  goal.trajectory.points.resize(1);
+  goal.trajectory.points[0].positions = {0.0};
+  goal.trajectory.points[0].time_from_start = ros::Duration(1.0);
+  for (const auto& [path, end] : {std::pair(kNan, 0.0), std::pair(-0.001, 0.0), std::pair(0.0, 5.0)}) {
+    goal.path_tolerance = {path};
+    goal.goal_tolerance = {end};
+    const auto r = run(*controller, goal);
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->error_code, FollowJointTrajectoryResult::INVALID_GOAL) << r->error_string;
+    EXPECT_NE(r->error_string.find("tolerance"), std::string::npos) << r->error_string;
+  }
+}
+
 // After all of the above: every node serves a good request, and /diagnostics shows each node with what it refused.
 TEST_F(BadRequests, ZEveryNodeStillServes) {
   std::mutex mutex;
@@ -420,9 +451,7 @@ TEST_F(BadRequests, ZEveryNodeStillServes) {
     std::map<std::string, std::string> values;
     for (const auto& kv : it->second.values) values[kv.key] = kv.value;
     EXPECT_GT(std::stol(values["served"]), 0) << node;
-    if (node != "simulated_controller") {  // the only node no bad request above reached
-      EXPECT_GT(std::stol(values["refused"]), 0) << node << ": " << it->second.message;
-    }
+    EXPECT_GT(std::stol(values["refused"]), 0) << node << ": " << it->second.message;
     EXPECT_EQ(values["state"], "idle") << node;
     EXPECT_EQ(it->second.level, diagnostic_msgs::DiagnosticStatus::OK) << node << ": " << it->second.message;
   }
@@ -436,10 +465,12 @@ int main(int argc, char** argv) {
   visibility = std::make_unique<Client<AnalyseVisibilityAction>>("analyse_visibility", true);
   roughing = std::make_unique<Client<PlanRoughingAction>>("plan_roughing", true);
   finishing = std::make_unique<Client<PlanFinishingAction>>("plan_finishing", true);
+  controller = std::make_unique<Client<FollowJointTrajectoryAction>>("follow_joint_trajectory", true);
   const int result = RUN_ALL_TESTS();
   visibility.reset();
   roughing.reset();
   finishing.reset();
+  controller.reset();
   ros::shutdown();
   return result;
 }

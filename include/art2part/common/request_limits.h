@@ -41,6 +41,9 @@ inline constexpr RequestRange kVerifyTolerance{"tolerance", 1e-4, 1, "mm", "0.01
 inline constexpr RequestRange kStockMargin{"stock_margin", 0.01, 100, "mm", "2 mm"};
 // run_program: trajectory points per second.
 inline constexpr RequestRange kTrajectoryRate{"rate", 1, 1000, "points/s", "the node's ~rate"};
+// follow_joint_trajectory: per joint, m for slides and rad for rotary joints (above 1 it is mm or deg).
+inline constexpr RequestRange kPathTolerance{"path_tolerance", 1e-9, 1, "m or rad", "not checked"};
+inline constexpr RequestRange kGoalTolerance{"goal_tolerance", 1e-9, 1, "m or rad", "not checked"};
 
 }  // namespace request_limits
 
