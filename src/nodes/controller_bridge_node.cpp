@@ -6,10 +6,11 @@
 //             machine program (buildMachineProgram, mode 3+2 | 5axis | auto), its waypoints and their time
 //             parameterization, samples it at the rate; publishes it and sends it to the controller. The trajectory
 //             starts where the controller's joint_states last put the joints (up to the safe height first, then to
-//             the program's start), else at the program's start. Bad input: success=false with the reason.
+//             the program's start), else at the program's start. Bad input: success=false with the reason. FOLDER
+//             must lie under /art2part/output_root (cell_folders.h; relative: under it), rate 0 or 1..1000.
 //   action client: follow_joint_trajectory (FollowJointTrajectory), when a server is there
 //   topics:   joint_trajectory (trajectory_msgs/JointTrajectory, latched), the last trajectory built;
-//             subscribes joint_states (sensor_msgs/JointState)
+//             subscribes joint_states (sensor_msgs/JointState); /diagnostics (node_diagnostics.h)
 #include <actionlib/client/simple_action_client.h>
 #include <ros/ros.h>
 #include <sensor_msgs/JointState.h>
@@ -22,11 +23,14 @@
 #include <mutex>
 #include <optional>
 
+#include "art2part/common/request_limits.h"
 #include "art2part/post/joint_trajectory.h"
 #include "art2part/post/machine_program.h"
 #include "art2part/tooling/tool.h"
 #include "art2part/tooling/toolpath.h"
+#include "cell_folders.h"
 #include "machine_conversions.h"
+#include "node_diagnostics.h"
 
 namespace art2part {
 
@@ -46,6 +50,9 @@ class ControllerBridge {
     state_sub_ = nh.subscribe("joint_states", 10, &ControllerBridge::onJointState, this);
     service_ = nh.advertiseService("run_program", &ControllerBridge::runProgram, this);
     ROS_INFO("controller_bridge: machine %s (%s)", machine_.name.c_str(), kinematicsModuleName(machine_.kind).c_str());
+    diagnostics_.setConfiguration("machine", machine_.name);
+    diagnostics_.setConfiguration("output root", folderList(folders_.plans));
+    for (const std::string& problem : folders_.problems) diagnostics_.addProblem(problem);
   }
 
  private:
@@ -91,10 +98,23 @@ class ControllerBridge {
     return waypoints;
   }
 
+  // run_program as /diagnostics counts it: refused when the request or its files were bad, failed when the
+  // controller did not run it to the end.
   bool runProgram(RunToolpaths::Request& req, RunToolpaths::Response& res) {
+    NodeDiagnostics::Request request = diagnostics_.request("run_program");
+    runProgramUnrecorded(req, res);
+    request.finish(res.success ? RequestOutcome::Served : res.sent ? RequestOutcome::Failed : RequestOutcome::Refused,
+                   res.message);
+    return true;
+  }
+
+  bool runProgramUnrecorded(RunToolpaths::Request& req, RunToolpaths::Response& res) {
     std::lock_guard<std::mutex> running(run_mutex_);  // one program at a time
     try {
-      if (req.folder.empty()) throw InputError("name a folder holding toolpaths.csv and tools.json");
+      // The request's checks: the folder under the output root (the rest of the callback reads the resolved one),
+      // the rate in range.
+      req.folder = confinedField(folders_.plans, "folder", req.folder);
+      checkedRequestValue(req.rate, request_limits::kTrajectoryRate);
       namespace fs = std::filesystem;
       if (!fs::is_directory(req.folder)) throw InputError(req.folder + " is not a folder");
       for (const char* file : {"toolpaths.csv", "tools.json"})
@@ -155,6 +175,8 @@ class ControllerBridge {
     return true;
   }
 
+  const CellFolders folders_ = readCellFolders(false);
+  NodeDiagnostics diagnostics_;
   Machine machine_;
   double rate_ = 50, controller_wait_ = 2;
   PostOptions post_options_;
