@@ -139,9 +139,13 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
   const int n = static_cast<int>(setups.setups.size());
   long levels_done = 0;
   for (int k = 0; k < n && !plan.cancelled; ++k) {
-    // Each operation's reports as a share of all the setups (setup k spans [k/n, (k+1)/n]), levels counted on.
+    // Each operation's reports as a share of all the setups, levels counted on: setup k spans [k/n, (k+1)/n], shared
+    // out among the operations it may have (the main one, the rest passes), operation j taking the j-th part.
+    const int slots = 1 + (options.rest_pass ? std::max(0, options.rest_passes) : 0);
+    int slot = 0;
     const ProgressSink within = [&](const ProgressReport& p) {
-      return reportProgress(progress, "roughing", (k + std::min(p.fraction, 1.0)) / n,
+      const double share = (slot + std::clamp(p.fraction, 0.0, 1.0)) / slots;
+      return reportProgress(progress, "roughing", (k + share) / n,
                             "setup " + std::to_string(k + 1) + " of " + std::to_string(n) + ": " + p.message,
                             levels_done + p.done);
     };
@@ -182,6 +186,7 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
     for (int pass = 0; options.rest_pass && pass < options.rest_passes; ++pass) {
       const Tool* rest = restTool(candidates, *previous);
       if (!rest) break;
+      slot = pass + 1;
       RoughingStart after;
       after.previous = left;
       after.earlier = stock;
