@@ -12,16 +12,23 @@ JOBS ?= 2
 export PATH := /usr/bin:/bin:$(PATH)
 CATKIN := catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: deps build demo test bench clean
+.PHONY: deps build install demo test bench clean
 
 deps:
 	@$(ROOT)/scripts/install-deps.sh
 
 build: deps
+	@$(ROOT)/scripts/link-workspace.sh
 	@cd $(WS) && $(CATKIN) -j$(JOBS) > $(WS)/build.log 2>&1 \
 	  || { tail -n 60 $(WS)/build.log; echo "make: catkin build failed (full log: $(WS)/build.log)"; exit 1; }
 	@grep -E "warning:" $(WS)/build.log | grep -v "^/usr/" | sort -u | head -20 || true
 	@echo "build: ok"
+
+# The install space (catkin_ws/install): `source catkin_ws/install/setup.bash`, then roslaunch art2part cell.launch.
+install: build
+	@cd $(WS) && $(CATKIN) -j$(JOBS) install > $(WS)/build-install.log 2>&1 \
+	  || { tail -n 60 $(WS)/build-install.log; echo "make: catkin install failed"; exit 1; }
+	@echo "install: $(WS)/install (source $(WS)/install/setup.bash)"
 
 # The main job on the bundled example part, headless: writes its results under out/.
 demo: build

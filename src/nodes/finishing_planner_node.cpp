@@ -19,6 +19,7 @@
 
 #include "finishing_markers.h"
 #include "part_client.h"
+#include "marker_helpers.h"
 
 #ifndef ART2PART_CONFIG_DIR
 #error "ART2PART_CONFIG_DIR (the package's config folder) must be defined by the build"
@@ -73,7 +74,7 @@ class FinishingPlannerNode {
       f.stage = "done";
       f.fraction = 1;
       server_.publishFeedback(f);
-      markers_pub_.publish(finishingMarkers(*part, plan, frame_id_));
+      markers_pub_.publish(forPart(id, finishingMarkers(*part, plan, frame_id_)));
       ROS_INFO("plan_finishing: %s", result.message.c_str());
       server_.setSucceeded(result);
     } catch (const std::exception& e) {  // InputError (a bad goal) and anything else: no crash

@@ -14,6 +14,7 @@
 
 #include "part_conversions.h"
 #include "part_markers.h"
+#include "marker_helpers.h"
 
 namespace art2part {
 
@@ -57,7 +58,8 @@ class PartServer {
       res.success = true;
       for (const std::string& w : msg.summary.warnings) res.message += (res.message.empty() ? "" : "; ") + w;
       part_pub_.publish(msg);
-      marker_pub_.publish(partMarker(part, frame_id_, "part"));
+      marker_pub_.publish(deleteAllMarker(frame_id_));  // the part loaded before leaves rviz
+      marker_pub_.publish(partMarker(part, frame_id_, partNamespace(id, "part")));
       std::lock_guard<std::mutex> lock(mutex_);
       parts_[id] = std::move(msg);
       last_id_ = id;

@@ -22,6 +22,7 @@
 #include <stdexcept>
 
 #include "part_client.h"
+#include "marker_helpers.h"
 
 #ifndef ART2PART_CONFIG_DIR
 #error "ART2PART_CONFIG_DIR (the package's config folder) must be defined by the build"
@@ -100,7 +101,7 @@ class RoughingPlannerNode {
       result.success = true;
       result.message = summary(id, setups, plan, result, goal->output_dir);
       result.seconds = secondsSince(start);
-      markers_pub_.publish(roughingMarkers(*part, setups, plan, options, frame_id_));
+      markers_pub_.publish(forPart(id, roughingMarkers(*part, setups, plan, options, frame_id_)));
       ROS_INFO("plan_roughing: %s", result.message.c_str());
       server_.setSucceeded(result);
     } catch (const std::exception& e) {  // InputError (a bad goal), a cancelled goal and anything else: no crash

@@ -18,6 +18,7 @@
 #include <mutex>
 
 #include "part_client.h"
+#include "marker_helpers.h"
 
 namespace art2part {
 
@@ -56,7 +57,7 @@ class SetupPlannerNode {
                     " unmachinable triangles; " + std::to_string(visibility.map.triangles()) + " triangles x " +
                     std::to_string(visibility.map.directions()) + " directions " +
                     (given ? "from the request" : "analysed here");
-      publish(ticket, *part, plan, res.setups);
+      publish(ticket, id, *part, plan, res.setups);
     } catch (const std::exception& e) {  // InputError (a bad request) and anything else: an answer, not a crash
       res = PlanSetups::Response();
       res.success = false;
@@ -67,13 +68,14 @@ class SetupPlannerNode {
     return true;
   }
 
-  void publish(long ticket, const Part& part, const SetupPlan& plan, const std::vector<MachiningSetup>& setups) {
+  void publish(long ticket, const std::string& part_id, const Part& part, const SetupPlan& plan,
+               const std::vector<MachiningSetup>& setups) {
     std::lock_guard<std::mutex> lock(publish_mutex_);
     if (ticket < shown_ticket_) return;  // a later request has been shown already
     shown_ticket_ = ticket;
     tf_.sendTransform(setupTransforms(setups, frames_sent_, frame_id_, unused_frame_id_, ros::Time::now()));
     frames_sent_ = std::max(frames_sent_, static_cast<int>(setups.size()));
-    markers_pub_.publish(setupMarkers(part, plan, frame_id_));
+    markers_pub_.publish(forPart(part_id, setupMarkers(part, plan, frame_id_)));
   }
 
   std::string frame_id_, unused_frame_id_;

@@ -14,6 +14,7 @@
 #include <mutex>
 
 #include "verification_markers.h"
+#include "marker_helpers.h"
 
 namespace art2part {
 
@@ -37,7 +38,7 @@ class VerificationNode {
       fillResponse(v.report, res);
       res.success = true;
       res.message = "'" + req.folder + "' on '" + partFileOf(req) + "': " + summaryOf(v.report);
-      publish(ticket, v);
+      publish(ticket, partIdOfFile(req.part_file.empty() ? req.folder : req.part_file), v);  // markers' namespace
       ROS_INFO("verify_toolpaths: %s", res.message.c_str());
     } catch (const std::exception& e) {  // InputError (a bad request) and anything else: an answer, not a crash
       res = VerifyToolpaths::Response();
@@ -50,10 +51,10 @@ class VerificationNode {
   }
 
   // The markers are made outside the lock (contouring takes a while), and published unless a later request has been.
-  void publish(long ticket, const FolderVerification& v) {
+  void publish(long ticket, const std::string& part_id, const FolderVerification& v) {
     if (ticket < shown_ticket_.load()) return;
     const visualization_msgs::MarkerArray markers =
-        verificationMarkers(remainingStock(v, marker_cells_), v.report, frame_id_);
+        forPart(part_id, verificationMarkers(remainingStock(v, marker_cells_), v.report, frame_id_));
     std::lock_guard<std::mutex> lock(publish_mutex_);
     if (ticket < shown_ticket_.load()) return;
     shown_ticket_ = ticket;
