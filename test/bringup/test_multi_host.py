@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""Nodes on different hosts (loopback addresses standing in for machines): each advertises its own ROS_IP, and a
-service call from the client reaches a stage node that itself calls the part server on a third address."""
+"""Nodes on different hosts (addresses of a network namespace standing in for machines, see multi_host.sh): each
+advertises its own ROS_IP, and a service call from the client reaches a stage node that itself calls the part server
+on a third address."""
 import os
 import socket
 import unittest
@@ -15,7 +16,7 @@ from art2part.srv import LoadPart, LoadPartRequest, PlanSetups, PlanSetupsReques
 
 EXAMPLE = os.path.join(os.path.dirname(os.path.realpath(__file__)), '..', '..', 'examples',
                        'nist_ctc_01_asme1_rd.stp')
-CLIENT_IP, PART_SERVER_IP, SETUP_PLANNER_IP = '127.0.0.3', '127.0.0.2', '127.0.0.4'
+CLIENT_IP, PART_SERVER_IP, SETUP_PLANNER_IP = '10.77.0.3', '10.77.0.2', '10.77.0.4'
 
 
 def host_of(uri):
@@ -42,7 +43,7 @@ class MultiHost(unittest.TestCase):
         load = rospy.ServiceProxy('load_part', LoadPart)(LoadPartRequest(path=EXAMPLE, part_id='ctc1'))
         self.assertTrue(load.success, load.message)
         self.assertGreater(load.summary.triangles, 0)
-        # setup_planner (127.0.0.4) fetches the part from part_server (127.0.0.2) to answer the client (127.0.0.3).
+        # setup_planner (10.77.0.4) fetches the part from part_server (10.77.0.2) to answer the client (10.77.0.3).
         plan = rospy.ServiceProxy('plan_setups', PlanSetups)(PlanSetupsRequest(part_id='ctc1', mode='3axis', level=2))
         self.assertTrue(plan.success, plan.message)
         self.assertGreater(len(plan.setups), 0)
