@@ -38,9 +38,10 @@ demo: build
 	$(BIN)/art2part render $(EXAMPLE) --out $(OUT)/part.png
 	$(BIN)/art2part visibility $(EXAMPLE) --out $(OUT) --picture $(OUT)/cones.png | tee $(OUT)/visibility.txt
 	$(BIN)/art2part plan $(EXAMPLE) --out $(OUT) | tee $(OUT)/plan.txt
+	$(ROOT)/scripts/rviz_screenshot.sh $(OUT)/rviz_cell.png $(EXAMPLE)
 	@echo "demo: results in $(OUT): part.txt part.json part.png, mesh.stl directions.csv visibility.bits cones.png," \
 	  "plan.txt plan.json setups.png toolpaths.csv tools.json program.ngc (setup_<k>.ngc, tool.tbl, trajectory.csv)" \
-	  "remaining.png"
+	  "remaining.png, rviz_cell.png (the cell in rviz: part, setup frames, machine)"
 
 # All tests: gtest per stage and rostest integration, through ctest (catkin_make run_tests exits 0 on failures).
 test: build
@@ -52,4 +53,4 @@ bench: build
 	@for b in $(BIN)/bench_*; do echo "== $$(basename $$b)"; $$b; done
 
 clean:
-	rm -rf $(WS)/build $(WS)/devel $(OUT)
+	rm -rf $(WS)/build $(WS)/devel $(WS)/install $(OUT)

@@ -44,14 +44,20 @@ def part_box_m(part_file):
 
 
 def framed_view(config, centre, diagonal):
-    """Points the orbit view at `centre` from where a sphere round the box fills the view, scales the TF axes."""
+    """Points the orbit view at `centre` from where a sphere round the box fills the view; scales the TF axes and the
+    grid to the part."""
     view = config['Visualization Manager']['Views']['Current']
     view['Focal Point'] = {'X': centre[0], 'Y': centre[1], 'Z': centre[2]}
     view['Distance'] = FRAMING_MARGIN * (diagonal / 2) / math.tan(RVIZ_FOV / 2)
     view['Near Clip Distance'] = max(1e-4, diagonal / 1000)
+    grid_cell = 10 ** round(math.log10(diagonal / 10))  # a power of ten, about a tenth of the part
     for display in config['Visualization Manager']['Displays']:
         if display.get('Class') == 'rviz/TF':
             display['Marker Scale'] = max(0.02, diagonal / 4)
+        elif display.get('Class') == 'rviz/Grid':
+            display['Cell Size'] = grid_cell
+            display['Plane Cell Count'] = max(2, math.ceil(2 * diagonal / grid_cell))
+            display['Name'] = 'Grid (%g m cells)' % grid_cell
     return config
 
 
