@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """rviz for the cell, framed on the part: reads rviz/cell.rviz, aims its orbit camera at the part's box (from
 `art2part info PART --json`) from a distance that fits the box in view, writes the result beside the ROS logs and runs
 rviz on it. Without a part (or if it cannot be read) the template's view is kept.

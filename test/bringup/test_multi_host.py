@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Nodes on different hosts (addresses of a network namespace standing in for machines, see multi_host.sh): each
 advertises its own ROS_IP, and a service call from the client reaches a stage node that itself calls the part server
 on a third address."""
