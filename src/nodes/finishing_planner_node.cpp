@@ -7,6 +7,7 @@
 //             written to the goal's output_dir when it names one
 //   topics:   ~markers (MarkerArray, latched): DELETEALL, finishing feeds by operation kind (ns finishing_<kind>),
 //             rapids (ns finishing_rapids), per face its tool direction as an arrow (ns face_directions), metres
+//             (markers: every namespace under "<part_id>/", a DELETEALL first; marker_helpers' forPart)
 //   params:   ~frame_id (default "part"), ~tools (the tool library; default the package's config/tools.yaml)
 // A bad goal (unknown part, bad mode, level or length, an unwritable output_dir) is aborted with a one-line reason in
 // result.message; the node stays up. A cancel stops the plan at the next stage or group of faces; it ends preempted.

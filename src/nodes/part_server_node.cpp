@@ -1,6 +1,7 @@
 // part_server_node: loads part files and serves them to the other stages by id.
 //   services: load_part (LoadPart), get_part (GetPart), list_parts (ListParts)
 //   topics:   part (LoadedPart, latched: the part loaded last), part_marker (Marker, latched)
+//             (part_marker: namespace "<part_id>/part" after a DELETEALL)
 //   params:   ~part_file (load at start-up), ~frame_id (default "part")
 // A bad request gets success=false and the reason; the node stays up.
 #include <ros/ros.h>

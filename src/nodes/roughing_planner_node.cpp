@@ -7,6 +7,7 @@
 //             written to the goal's output_dir when it names one
 //   topics:   ~markers (MarkerArray, latched): DELETEALL, per operation its feed moves coloured by tool (ns feed_<i>)
 //             and its rapids thin and grey (ns rapid_<i>), per setup its levels as squares (ns slabs_<k>), metres
+//             (markers: every namespace under "<part_id>/", a DELETEALL first; marker_helpers' forPart)
 //   params:   ~frame_id (default "part"), ~tools (the tool library; default the package's config/tools.yaml)
 // A bad goal (unknown part or tool, a tool that cannot rough, a bad mode or number, an unwritable output_dir) is
 // aborted with a one-line reason in result.message; the node stays up. A cancel, or a new goal, stops the running one

@@ -6,6 +6,7 @@
 //             the parameter ~unused_frame_id (default "unused_setups", a frame with no parent), so looking them up
 //             from part fails instead of showing an old plan.
 //   topics:   setup_markers (MarkerArray, latched): DELETEALL, an arrow and a label per setup, the part by setup
+//             (markers: every namespace under "<part_id>/", a DELETEALL first; marker_helpers' forPart)
 // A bad request answers success=false with the reason; the node stays up. Requests run in parallel (AsyncSpinner);
 // when plans finish out of order, the markers and frames shown are those of the most recent request.
 #include "setup_markers.h"  // first: it renames the message art2part::Setup (see there)

@@ -3,6 +3,7 @@
 //   service:  verify_toolpaths (VerifyToolpaths): gouges, collisions, leftover and the whole JSON report
 //   topics:   verification_markers (MarkerArray, latched): DELETEALL, the remaining stock coloured by deviation,
 //             gouges (red) and collisions (orange) as spheres, in ~frame_id (default "part"), metres
+//             (markers: namespace under "<part_id>/" (the part file's or the folder's name), a DELETEALL first)
 //   params:   ~frame_id, ~marker_cells (cells along the stock's longest side for the stock mesh; default 150)
 // Bad input (missing folder, malformed file, unknown tool, bad numbers) answers success=false with the reason; the node
 // stays up. A path that gouges or collides is success=true, passed=false. Requests run in parallel (AsyncSpinner);

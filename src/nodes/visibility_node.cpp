@@ -3,6 +3,7 @@
 //   service:  show_cone (ShowCone): publish the cone of one triangle or face of the last analysis
 //   topics:   visibility_markers (MarkerArray, latched): direction sphere and part coloured by cone size;
 //             cone_marker (Marker, latched)
+//             (markers: every namespace under "<part_id>/", a DELETEALL first; marker_helpers' forPart)
 // A bad goal is aborted with the reason; the node stays up.
 #include <actionlib/server/simple_action_server.h>
 #include <ros/ros.h>
