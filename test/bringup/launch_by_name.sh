@@ -77,5 +77,7 @@ echo "launch_by_name: devel space ok"
 
 # The install space: `catkin_make install` (here: cmake --install on what is already built).
 cmake --install "$build" >"$tmp/install.log" 2>&1 || { tail -20 "$tmp/install.log"; fail "cmake --install $build"; }
+links=$(find "$install/share/art2part" "$install/lib/art2part" -type l)
+[ -z "$links" ] || fail "the install space holds links into the source tree: $links"
 check_space "$install/setup.bash" "$install/share/art2part"
 echo "launch_by_name: install space ok"
