@@ -7,7 +7,7 @@ if [ -z "${ROS_IP:-}" ] && [ -z "${ROS_HOSTNAME:-}" ]; then
   ROS_IP=$(hostname -I 2>/dev/null | awk '{print $1}')
   [ -n "$ROS_IP" ] && export ROS_IP
 fi
-root=$(cd "$(dirname "$0")/.." && pwd -P)  # the repository, through the package folder's links
+root=$(cd -P "$(dirname "$0")" && cd .. && pwd)  # the repository, also when run through the package folder's links
 if [ -f "$root/catkin_ws/devel/setup.bash" ]; then
   source "$root/catkin_ws/devel/setup.bash"
 else
