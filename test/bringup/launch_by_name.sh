@@ -40,6 +40,9 @@ check_space() {  # SETUP_BASH EXPECTED_PACKAGE_DIR
       timeout 20 rosrun --prefix echo art2part "$node" </dev/null >"$tmp/run" 2>&1 || fail "rosrun art2part $node: $(cat "$tmp/run")"
       [ "$(wc -l <"$tmp/run")" = 1 ] || fail "rosrun art2part $node: $(cat "$tmp/run")"
     done
+    if [ -x "$expected/scripts/stage_env.sh" ]; then  # cell.launch's env loader for the stage host (devel space)
+      [ "$("$expected/scripts/stage_env.sh" rospack find art2part)" = "$expected" ] || fail "scripts/stage_env.sh"
+    fi
     cd "$tmp" && python3 -c "import art2part.srv, art2part.msg" || fail "python3 cannot import art2part.srv, art2part.msg"
 
     # Every parameter comes from config/cell.yaml, the machine file from the machine argument.
