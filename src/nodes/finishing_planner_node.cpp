@@ -7,6 +7,7 @@
 //             written to the goal's output_dir when it names one
 //   topics:   ~markers (MarkerArray, latched): DELETEALL, finishing feeds by operation kind (ns finishing_<kind>),
 //             rapids (ns finishing_rapids), per face its tool direction as an arrow (ns face_directions), metres
+//             (markers: every namespace under "<part_id>/", a DELETEALL first; marker_helpers' forPart)
 //   params:   ~frame_id (default "part"), ~tools (the tool library; default the package's config/tools.yaml);
 //             /art2part/output_root (cell_folders.h): output_dir must lie under it (relative: under it)
 //   topics:   /diagnostics (node_diagnostics.h)
@@ -23,6 +24,7 @@
 #include "finishing_markers.h"
 #include "node_diagnostics.h"
 #include "part_client.h"
+#include "marker_helpers.h"
 
 #ifndef ART2PART_CONFIG_DIR
 #error "ART2PART_CONFIG_DIR (the package's config folder) must be defined by the build"
@@ -84,7 +86,7 @@ class FinishingPlannerNode {
       f.stage = "done";
       f.fraction = 1;
       server_.publishFeedback(f);
-      markers_pub_.publish(finishingMarkers(*part, plan, frame_id_));
+      markers_pub_.publish(forPart(id, finishingMarkers(*part, plan, frame_id_)));
       ROS_INFO("plan_finishing: %s", result.message.c_str());
       server_.setSucceeded(result);
       request.finish(RequestOutcome::Served, result.message);

@@ -1,6 +1,7 @@
 // part_server_node: loads part files and serves them to the other stages by id.
 //   services: load_part (LoadPart), get_part (GetPart), list_parts (ListParts)
 //   topics:   part (LoadedPart, latched: the part loaded last), part_marker (Marker, latched)
+//             (part_marker: namespace "<part_id>/part" after a DELETEALL)
 //   params:   ~part_file (load at start-up), ~frame_id (default "part"); /art2part/part_folders (cell_folders.h)
 //   topics:   /diagnostics (node_diagnostics.h)
 // A bad request gets success=false and the reason; the node stays up. load_part opens only files inside the part
@@ -19,6 +20,7 @@
 #include "node_diagnostics.h"
 #include "part_conversions.h"
 #include "part_markers.h"
+#include "marker_helpers.h"
 
 namespace art2part {
 
@@ -66,7 +68,8 @@ class PartServer {
       res.success = true;
       for (const std::string& w : msg.summary.warnings) res.message += (res.message.empty() ? "" : "; ") + w;
       part_pub_.publish(msg);
-      marker_pub_.publish(partMarker(part, frame_id_, "part"));
+      marker_pub_.publish(deleteAllMarker(frame_id_));  // the part loaded before leaves rviz
+      marker_pub_.publish(partMarker(part, frame_id_, partNamespace(id, "part")));
       std::lock_guard<std::mutex> lock(mutex_);
       parts_[id] = std::move(msg);
       last_id_ = id;

@@ -7,6 +7,7 @@
 //             written to the goal's output_dir when it names one
 //   topics:   ~markers (MarkerArray, latched): DELETEALL, per operation its feed moves coloured by tool (ns feed_<i>)
 //             and its rapids thin and grey (ns rapid_<i>), per setup its levels as squares (ns slabs_<k>), metres
+//             (markers: every namespace under "<part_id>/", a DELETEALL first; marker_helpers' forPart)
 //   params:   ~frame_id (default "part"), ~tools (the tool library; default the package's config/tools.yaml);
 //             /art2part/output_root (cell_folders.h): output_dir must lie under it (relative: under it)
 //   topics:   /diagnostics (node_diagnostics.h)
@@ -26,6 +27,7 @@
 #include "cell_folders.h"
 #include "node_diagnostics.h"
 #include "part_client.h"
+#include "marker_helpers.h"
 
 #ifndef ART2PART_CONFIG_DIR
 #error "ART2PART_CONFIG_DIR (the package's config folder) must be defined by the build"
@@ -110,7 +112,7 @@ class RoughingPlannerNode {
       result.success = true;
       result.message = summary(id, setups, plan, result, goal->output_dir);
       result.seconds = secondsSince(start);
-      markers_pub_.publish(roughingMarkers(*part, setups, plan, options, frame_id_));
+      markers_pub_.publish(forPart(id, roughingMarkers(*part, setups, plan, options, frame_id_)));
       ROS_INFO("plan_roughing: %s", result.message.c_str());
       server_.setSucceeded(result);
       request.finish(RequestOutcome::Served, result.message);

@@ -7,6 +7,7 @@
 //             from part fails instead of showing an old plan.
 //   topics:   setup_markers (MarkerArray, latched): DELETEALL, an arrow and a label per setup, the part by setup;
 //             /diagnostics (node_diagnostics.h)
+//             (markers: every namespace under "<part_id>/", a DELETEALL first; marker_helpers' forPart)
 // A bad request answers success=false with the reason; the node stays up. Requests run in parallel (AsyncSpinner);
 // when plans finish out of order, the markers and frames shown are those of the most recent request.
 #include "setup_markers.h"  // first: it renames the message art2part::Setup (see there)
@@ -20,6 +21,7 @@
 
 #include "node_diagnostics.h"
 #include "part_client.h"
+#include "marker_helpers.h"
 
 namespace art2part {
 
@@ -59,7 +61,7 @@ class SetupPlannerNode {
                     " unmachinable triangles; " + std::to_string(visibility.map.triangles()) + " triangles x " +
                     std::to_string(visibility.map.directions()) + " directions " +
                     (given ? "from the request" : "analysed here");
-      publish(ticket, *part, plan, res.setups);
+      publish(ticket, id, *part, plan, res.setups);
       request.finish(RequestOutcome::Served, res.message);
     } catch (const std::exception& e) {  // InputError (a bad request) and anything else: an answer, not a crash
       res = PlanSetups::Response();
@@ -72,13 +74,14 @@ class SetupPlannerNode {
     return true;
   }
 
-  void publish(long ticket, const Part& part, const SetupPlan& plan, const std::vector<MachiningSetup>& setups) {
+  void publish(long ticket, const std::string& part_id, const Part& part, const SetupPlan& plan,
+               const std::vector<MachiningSetup>& setups) {
     std::lock_guard<std::mutex> lock(publish_mutex_);
     if (ticket < shown_ticket_) return;  // a later request has been shown already
     shown_ticket_ = ticket;
     tf_.sendTransform(setupTransforms(setups, frames_sent_, frame_id_, unused_frame_id_, ros::Time::now()));
     frames_sent_ = std::max(frames_sent_, static_cast<int>(setups.size()));
-    markers_pub_.publish(setupMarkers(part, plan, frame_id_));
+    markers_pub_.publish(forPart(part_id, setupMarkers(part, plan, frame_id_)));
   }
 
   NodeDiagnostics diagnostics_;

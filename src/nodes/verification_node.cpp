@@ -3,6 +3,7 @@
 //   service:  verify_toolpaths (VerifyToolpaths): gouges, collisions, leftover and the whole JSON report
 //   topics:   verification_markers (MarkerArray, latched): DELETEALL, the remaining stock coloured by deviation,
 //             gouges (red) and collisions (orange) as spheres, in ~frame_id (default "part"), metres
+//             (markers: namespace under "<part_id>/" (the part file's or the folder's name), a DELETEALL first)
 //   params:   ~frame_id, ~marker_cells (cells along the stock's longest side for the stock mesh; default 150);
 //             /art2part/output_root, /art2part/part_folders (cell_folders.h)
 //   topics:   /diagnostics (node_diagnostics.h)
@@ -20,6 +21,7 @@
 #include "cell_folders.h"
 #include "node_diagnostics.h"
 #include "verification_markers.h"
+#include "marker_helpers.h"
 
 namespace art2part {
 
@@ -47,7 +49,7 @@ class VerificationNode {
       fillResponse(v.report, res);
       res.success = true;
       res.message = "'" + req.folder + "' on '" + partFileOf(req) + "': " + summaryOf(v.report);
-      publish(ticket, v);
+      publish(ticket, partIdOfFile(req.part_file.empty() ? req.folder : req.part_file), v);  // markers' namespace
       ROS_INFO("verify_toolpaths: %s", res.message.c_str());
       request.finish(RequestOutcome::Served, res.message);
     } catch (const std::exception& e) {  // InputError (a bad request) and anything else: an answer, not a crash
@@ -70,10 +72,10 @@ class VerificationNode {
   }
 
   // The markers are made outside the lock (contouring takes a while), and published unless a later request has been.
-  void publish(long ticket, const FolderVerification& v) {
+  void publish(long ticket, const std::string& part_id, const FolderVerification& v) {
     if (ticket < shown_ticket_.load()) return;
     const visualization_msgs::MarkerArray markers =
-        verificationMarkers(remainingStock(v, marker_cells_), v.report, frame_id_);
+        forPart(part_id, verificationMarkers(remainingStock(v, marker_cells_), v.report, frame_id_));
     std::lock_guard<std::mutex> lock(publish_mutex_);
     if (ticket < shown_ticket_.load()) return;
     shown_ticket_ = ticket;

@@ -3,6 +3,7 @@
 //   service:  show_cone (ShowCone): publish the cone of one triangle or face of the last analysis
 //   topics:   visibility_markers (MarkerArray, latched): direction sphere and part coloured by cone size;
 //             cone_marker (Marker, latched); /diagnostics (node_diagnostics.h)
+//             (markers: every namespace under "<part_id>/", a DELETEALL first; marker_helpers' forPart)
 // A bad goal is aborted with the reason; the node stays up.
 #include <actionlib/server/simple_action_server.h>
 #include <ros/ros.h>
@@ -17,6 +18,7 @@
 #include "node_diagnostics.h"
 #include "part_client.h"
 #include "visibility_markers.h"
+#include "marker_helpers.h"
 
 namespace art2part {
 
@@ -85,8 +87,9 @@ class VisibilityNode {
       result.message = "part '" + id + "': " + std::to_string(analysis->map.triangles()) + " triangles x " +
                        std::to_string(analysis->map.directions()) + " directions, " +
                        std::to_string(analysis->unseen_triangles.size()) + " triangles seen from nowhere";
-      markers_pub_.publish(visibilityMarkers(*part, *analysis, frame_id_));
+      markers_pub_.publish(forPart(id, visibilityMarkers(*part, *analysis, frame_id_)));
       last_part_ = part;
+      last_id_ = id;
       last_ = analysis;
       server_.setSucceeded(result);
       request.finish(RequestOutcome::Served, result.message);
@@ -133,7 +136,10 @@ class VisibilityNode {
     const Cone cone = commonCone(last_->map, triangles);
     Vec3 apex = Vec3::Zero();
     for (int t : triangles) apex += triangleCentroid(part.mesh, t) / static_cast<double>(triangles.size());
-    cone_pub_.publish(coneMarker(part, *last_, cone, apex, frame_id_));
+    visualization_msgs::Marker cone_marker = coneMarker(part, *last_, cone, apex, frame_id_);
+    cone_marker.ns = partNamespace(last_id_, cone_marker.ns);
+    cone_pub_.publish(deleteAllMarker(frame_id_));  // the cone shown before goes, whichever part it was on
+    cone_pub_.publish(cone_marker);
     res.success = true;
     res.directions_in_cone = coneSize(cone);
     res.solid_angle = coneSolidAngle(cone, last_->directions);
@@ -147,6 +153,7 @@ class VisibilityNode {
   ros::ServiceServer cone_srv_;
   PartClient parts_;
   std::shared_ptr<const Part> last_part_;
+  std::string last_id_;  // the part id of last_part_
   std::shared_ptr<const VisibilityResult> last_;
 };
 
