@@ -12,16 +12,23 @@ JOBS ?= 2
 export PATH := /usr/bin:/bin:$(PATH)
 CATKIN := catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: deps build demo test bench clean
+.PHONY: deps build install demo test bench clean
 
 deps:
 	@$(ROOT)/scripts/install-deps.sh
 
 build: deps
+	@$(ROOT)/scripts/link-workspace.sh
 	@cd $(WS) && $(CATKIN) -j$(JOBS) > $(WS)/build.log 2>&1 \
 	  || { tail -n 60 $(WS)/build.log; echo "make: catkin build failed (full log: $(WS)/build.log)"; exit 1; }
 	@grep -E "warning:" $(WS)/build.log | grep -v "^/usr/" | sort -u | head -20 || true
 	@echo "build: ok"
+
+# The install space (catkin_ws/install): `source catkin_ws/install/setup.bash`, then roslaunch art2part cell.launch.
+install: build
+	@cd $(WS) && $(CATKIN) -j$(JOBS) install > $(WS)/build-install.log 2>&1 \
+	  || { tail -n 60 $(WS)/build-install.log; echo "make: catkin install failed"; exit 1; }
+	@echo "install: $(WS)/install (source $(WS)/install/setup.bash)"
 
 # The main job on the bundled example part, headless: writes its results under out/.
 demo: build
@@ -31,9 +38,10 @@ demo: build
 	$(BIN)/art2part render $(EXAMPLE) --out $(OUT)/part.png
 	$(BIN)/art2part visibility $(EXAMPLE) --out $(OUT) --picture $(OUT)/cones.png | tee $(OUT)/visibility.txt
 	$(BIN)/art2part plan $(EXAMPLE) --out $(OUT) | tee $(OUT)/plan.txt
+	$(ROOT)/scripts/rviz_screenshot.sh $(OUT)/rviz_cell.png $(EXAMPLE)
 	@echo "demo: results in $(OUT): part.txt part.json part.png, mesh.stl directions.csv visibility.bits cones.png," \
 	  "plan.txt plan.json setups.png toolpaths.csv tools.json program.ngc (setup_<k>.ngc, tool.tbl, trajectory.csv)" \
-	  "remaining.png"
+	  "remaining.png, rviz_cell.png (the cell in rviz: part, setup frames, machine)"
 
 # All tests: gtest per stage and rostest integration, through ctest (catkin_make run_tests exits 0 on failures).
 test: build
@@ -45,4 +53,4 @@ bench: build
 	@for b in $(BIN)/bench_*; do echo "== $$(basename $$b)"; $$b; done
 
 clean:
-	rm -rf $(WS)/build $(WS)/devel $(OUT)
+	rm -rf $(WS)/build $(WS)/devel $(WS)/install $(OUT)

@@ -43,7 +43,7 @@ void benchOneSetup(const std::string& name, const Part& part, const ToolLibrary&
     return;
   }
   start = std::chrono::steady_clock::now();
-  const RoughingOperation op = roughSetup(part, setup, 0, *tool, options);
+  const RoughingOperation op = roughSetup(part, setup, 0, *tool, options).operation;
   const double seconds = secondsSince(start);
   int rings = 0;
   for (const RoughingLevel& l : op.levels) rings += l.rings;

@@ -220,8 +220,10 @@ TEST(FinishingPlannerNode, PublishesPathsByKindAndFaceDirections) {
   int arrows = 0;
   for (const auto& m : markers->markers) {
     if (m.action != visualization_msgs::Marker::ADD) continue;
-    ns.insert(m.ns);
-    if (m.ns == "face_directions") {
+    // Every namespace under the part id, so two parts never mix in rviz.
+    ASSERT_EQ(m.ns.rfind(kPart + "/", 0), 0u) << m.ns << " is not in part " << kPart << "'s namespace";
+    ns.insert(m.ns.substr(kPart.size() + 1));
+    if (m.ns == kPart + "/face_directions") {
       EXPECT_EQ(m.type, visualization_msgs::Marker::ARROW);
       EXPECT_EQ(m.points.size(), 2u);
       ++arrows;

@@ -342,3 +342,40 @@ INSTANTIATE_TEST_SUITE_P(SharedParts, RoughingOnParts,
                          // CTC-01 is planned and verified by test_setup_plan (the README's example); the others
                          // take minutes each (bench_roughing).
                          ::testing::Values("featuretype.STEP", "ANC101.stp"));
+
+// The progress contract (common/progress.h): a report after every level, the share never decreasing and the levels
+// counted up; asked to stop, planRoughing stops at the next level and keeps only the setups finished before.
+TEST(Roughing, ReportsEveryLevelAndStopsAtTheNextOneWhenAsked) {
+  const Part part = lPart();
+  const ToolLibrary library = loadToolLibrary(kTools);
+  SetupPlan setups;
+  setups.setups.push_back(topSetup(part));
+  setups.setups.push_back(topSetup(part));  // the same direction again: a second setup with (almost) nothing to do
+  std::vector<ProgressReport> reports;
+  const RoughingPlan whole = planRoughing(part, setups, library, {}, [&](const ProgressReport& p) {
+    reports.push_back(p);
+    return true;
+  });
+  ASSERT_FALSE(whole.cancelled);
+  std::size_t levels = 0;
+  for (const RoughingOperation& op : whole.operations) levels += op.levels.size();
+  EXPECT_GE(reports.size(), levels) << "a report per level at least";
+  for (std::size_t i = 1; i < reports.size(); ++i) {
+    EXPECT_EQ(reports[i].stage, "roughing");
+    EXPECT_GE(reports[i].fraction, reports[i - 1].fraction - 1e-12) << i;
+    EXPECT_GE(reports[i].done, reports[i - 1].done) << i;
+  }
+  EXPECT_DOUBLE_EQ(reports.back().fraction, 1.0);
+
+  // Stop in the middle of the first setup's main operation: nothing of that setup is kept.
+  int calls = 0, after_no = 0;
+  bool said_no = false;
+  const RoughingPlan stopped = planRoughing(part, setups, library, {}, [&](const ProgressReport&) {
+    if (said_no) ++after_no;
+    said_no = said_no || ++calls == 4;
+    return !said_no;
+  });
+  EXPECT_TRUE(stopped.cancelled);
+  EXPECT_TRUE(stopped.operations.empty());
+  EXPECT_EQ(after_no, 0) << "reports after the stop was asked";
+}

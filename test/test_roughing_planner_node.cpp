@@ -272,11 +272,14 @@ TEST(RoughingPlannerNode, PublishesToolpathAndLevelMarkers) {
     if (m.action != visualization_msgs::Marker::ADD) continue;
     EXPECT_EQ(m.header.frame_id, "part") << m.ns;
     EXPECT_FALSE(m.points.empty()) << m.ns;
-    if (m.ns.rfind("feed_", 0) == 0 || m.ns.rfind("rapid_", 0) == 0) {
+    // Every namespace under the part id, so two parts never mix in rviz.
+    ASSERT_EQ(m.ns.rfind(kPart + "/", 0), 0u) << m.ns << " is not in part " << kPart << "'s namespace";
+    const std::string ns = m.ns.substr(kPart.size() + 1);
+    if (ns.rfind("feed_", 0) == 0 || ns.rfind("rapid_", 0) == 0) {
       EXPECT_EQ(m.type, visualization_msgs::Marker::LINE_LIST) << m.ns;
       EXPECT_EQ(m.points.size() % 2, 0u) << m.ns;
-      (m.ns[0] == 'f' ? feed : rapid).insert(m.ns);
-    } else if (m.ns.rfind("slabs_", 0) == 0) {
+      (ns[0] == 'f' ? feed : rapid).insert(ns);
+    } else if (ns.rfind("slabs_", 0) == 0) {
       EXPECT_EQ(m.type, visualization_msgs::Marker::LINE_STRIP) << m.ns;
       EXPECT_EQ(m.points.size(), 5u) << m.ns;
       ++slabs;

@@ -185,9 +185,12 @@ TEST(VerificationNode, MarkersShowTheRemainingStockAndTheGouges) {
   ASSERT_FALSE(markers->markers.empty());
   EXPECT_EQ(markers->markers.front().action, visualization_msgs::Marker::DELETEALL);
   int surfaces = 0, gouge_lists = 0;
+  // Namespaced by the plan folder's name (the part is the folder's mesh.stl), so two plans never mix in rviz.
+  const std::string folder = gougingFolder(), prefix = folder.substr(folder.find_last_of('/') + 1) + "/";
   for (const auto& m : markers->markers) {
     if (m.action != visualization_msgs::Marker::ADD) continue;
     EXPECT_EQ(m.header.frame_id, "part");
+    ASSERT_EQ(m.ns.rfind(prefix, 0), 0u) << m.ns << " is not in the namespace of " << prefix;
     if (m.type == visualization_msgs::Marker::TRIANGLE_LIST) {
       ++surfaces;
       ASSERT_GT(m.points.size(), 100u);
@@ -203,7 +206,7 @@ TEST(VerificationNode, MarkersShowTheRemainingStockAndTheGouges) {
         ASSERT_LE(p.z, 0.0121);
       }
     }
-    if (m.type == visualization_msgs::Marker::SPHERE_LIST && m.ns == "gouges") {
+    if (m.type == visualization_msgs::Marker::SPHERE_LIST && m.ns == prefix + "gouges") {
       ++gouge_lists;
       ASSERT_FALSE(m.points.empty());
       EXPECT_NEAR(m.points[0].z, (10 - kDip) * 1e-3, 2e-5) << "the deepest gouge, in metres";

@@ -6,9 +6,10 @@
 //             second (a heartbeat repeats the last one); a cancel ends the goal PREEMPTED within a second; a stage
 //             running longer than its timeout (~stage_timeouts) ends it ABORTED naming the stage.
 //   services: list_plans (ListPlans), get_plan (GetPlan): the plan folders under ~output_root.
-//   params:   ~part_folders (list; default: the package's examples/), ~output_root (default /tmp/art2part/plans),
-//             ~tools, ~machines_dir, ~machine_3axis, ~machine_5axis, ~max_queue, ~stage_timeouts (dict, s),
-//             ~default_timeout (s). The global /art2part/part_folders and /art2part/output_root, when set, win.
+//   params:   /art2part/part_folders and /art2part/output_root (launch/folders.launch: part_file must lie in the
+//             first, plans are written under the second), ~tools, ~machines_dir, ~machine_3axis, ~machine_5axis,
+//             ~max_queue, ~stage_timeouts (dict, s), ~default_timeout (s).
+//   topics:   /diagnostics (NodeDiagnostics: busy or idle, goals served, refused, failed, cancelled).
 // A bad goal is aborted with a one-line reason; the node serves the next one.
 #include <actionlib/server/action_server.h>
 #include <ros/ros.h>
@@ -27,14 +28,13 @@
 
 #include "art2part/plan/plan_folder.h"
 #include "art2part/tooling/tool.h"
+#include "cell_folders.h"
+#include "node_diagnostics.h"
 #include "part_client.h"
 #include "supervisor_requests.h"
 
 #ifndef ART2PART_CONFIG_DIR
 #error "ART2PART_CONFIG_DIR (the package's config folder) must be defined by the build"
-#endif
-#ifndef ART2PART_SOURCE_DIR
-#error "ART2PART_SOURCE_DIR (the package's folder) must be defined by the build"
 #endif
 
 namespace art2part {
@@ -55,11 +55,6 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 
 SupervisorConfig readConfig(ros::NodeHandle& pnh) {
   SupervisorConfig c;
-  c.part_folders = {std::string(ART2PART_SOURCE_DIR) + "/examples"};
-  pnh.param("part_folders", c.part_folders, c.part_folders);
-  ros::param::get("/art2part/part_folders", c.part_folders);
-  pnh.param<std::string>("output_root", c.output_root, "/tmp/art2part/plans");
-  ros::param::get("/art2part/output_root", c.output_root);
   pnh.param<std::string>("tools", c.tools, std::string(ART2PART_CONFIG_DIR) + "/tools.yaml");
   pnh.param<std::string>("machines_dir", c.machines_dir, std::string(ART2PART_CONFIG_DIR) + "/machines");
   pnh.param("machine_3axis", c.machine_3axis, c.machine_3axis);
@@ -76,19 +71,20 @@ class CellSupervisorNode {
  public:
   CellSupervisorNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
       : config_(readConfig(pnh)),
+        folders_(readCellFolders(true)),
+        output_root_(folders_.plans.roots.empty() ? std::string() : folders_.plans.roots.front()),
         server_(nh, "plan_part", [this](GoalHandle gh) { onGoal(gh); }, [this](GoalHandle gh) { onCancel(gh); },
                 false) {
-    std::error_code error;
-    fs::create_directories(config_.output_root, error);
-    if (error) ROS_WARN("cell_supervisor: cannot create output_root '%s': %s", config_.output_root.c_str(),
-                        error.message().c_str());
+    for (const std::string& problem : folders_.problems) diagnostics_.addProblem(problem);
+    diagnostics_.setConfiguration("part folders", folderList(folders_.parts));
+    diagnostics_.setConfiguration("output root", output_root_);
     list_srv_ = nh.advertiseService("list_plans", &CellSupervisorNode::listPlans, this);
     get_srv_ = nh.advertiseService("get_plan", &CellSupervisorNode::getPlan, this);
     heartbeat_ = nh.createWallTimer(ros::WallDuration(kWatch), [this](const ros::WallTimerEvent&) { beat(); });
     worker_ = std::thread([this] { work(); });
     server_.start();
-    ROS_INFO("plan_part ready (output_root %s, %zu part folders)", config_.output_root.c_str(),
-             config_.part_folders.size());
+    ROS_INFO("plan_part ready (output root %s; part folders %s)", output_root_.c_str(),
+             folderList(folders_.parts).c_str());
   }
 
   ~CellSupervisorNode() {
@@ -175,6 +171,7 @@ class CellSupervisorNode {
   // ---- one goal --------------------------------------------------------------------------------------------------
   void run(GoalHandle gh) {
     const PlanPartGoal goal = *gh.getGoal();
+    NodeDiagnostics::Request request = diagnostics_.request("plan_part " + (goal.part_file.empty() ? goal.part_id : goal.part_file));
     PlanPartResult result;
     try {
       const PlanOptions options = planOptionsFrom(goal);
@@ -184,7 +181,7 @@ class CellSupervisorNode {
       if (!goal.part_file.empty()) {
         LoadOptions load;
         load.unit = parseLengthUnit(goal.units.empty() ? "auto" : goal.units);
-        part = std::make_shared<const Part>(loadPart(confinedPartFile(goal.part_file, config_.part_folders), load));
+        part = std::make_shared<const Part>(loadPart(confinedField(folders_.parts, "part_file", goal.part_file), load));
       } else {
         part = parts_.get(goal.part_id);
       }
@@ -192,26 +189,37 @@ class CellSupervisorNode {
       const PlanResult plan = planPart(*part, library, options, [this](const ProgressReport& p) {
         return report(p.stage, p.fraction, p.message);
       });
-      if (plan.cancelled) return endStopped(gh);
+      if (plan.cancelled) {
+        request.finish(RequestOutcome::Cancelled, "cancelled");
+        return endStopped(gh);
+      }
       report("writing", 0, "the plan folder and the program");
-      const std::string name = newPlanFolderName(config_.output_root, part->source);
-      const std::string dir = (fs::path(config_.output_root) / name).string();
+      const std::string name = newPlanFolderName(output_root_, part->source);
+      const std::string dir = (fs::path(output_root_) / name).string();
       PlanFolderOptions folder;
       folder.program.machine = machine;
       folder.program.clampings = setupClampings(machine, *part, plan.setups, options.roughing);
       const WrittenPlan written = writePlanFolder(dir, *part, plan, folder);
-      if (stopRequested()) return endStopped(gh);
+      if (stopRequested()) {
+        request.finish(RequestOutcome::Cancelled, "cancelled");
+        return endStopped(gh);
+      }
       result.success = true;
       result.output_dir = dir;
       result.summary_json = planSummary(written.plan).dump();
       report("done", 1, "wrote " + dir);
       ROS_INFO("plan_part: %s -> %s", part->source.c_str(), dir.c_str());
       finish(gh, result, actionlib_msgs::GoalStatus::SUCCEEDED);
+      request.finish(RequestOutcome::Served, "wrote " + dir);
     } catch (const std::exception& e) {  // InputError (a bad goal, a part that will not load) and anything else
-      if (stopRequested()) return endStopped(gh);
+      if (stopRequested()) {
+        request.finish(RequestOutcome::Cancelled, "cancelled");
+        return endStopped(gh);
+      }
       result = PlanPartResult();
       result.reason = e.what();
       ROS_WARN("plan_part: %s", result.reason.c_str());
+      request.finish(outcomeOf(e), result.reason);
       finish(gh, result, actionlib_msgs::GoalStatus::ABORTED);
     }
   }
@@ -279,25 +287,25 @@ class CellSupervisorNode {
 
   // ---- services ----------------------------------------------------------------------------------------------------
   bool listPlans(ListPlans::Request&, ListPlans::Response& res) {
-    res.names = listPlanFolders(config_.output_root);
+    res.names = listPlanFolders(output_root_);
     for (const std::string& name : res.names) {
       std::string part;
       try {
-        const PlanFolder f = readPlanFolder((fs::path(config_.output_root) / name).string());
+        const PlanFolder f = readPlanFolder((fs::path(output_root_) / name).string());
         if (f.plan.contains("part")) part = f.plan["part"].value("source", "");
       } catch (const std::exception&) {
       }
       res.parts.push_back(part);
     }
     res.success = true;
-    res.message = std::to_string(res.names.size()) + " plans under " + config_.output_root;
+    res.message = std::to_string(res.names.size()) + " plans under " + output_root_;
     return true;
   }
 
   bool getPlan(GetPlan::Request& req, GetPlan::Response& res) {
     try {
       checkPlanName(req.name);
-      const std::string dir = (fs::path(config_.output_root) / req.name).string();
+      const std::string dir = (fs::path(output_root_) / req.name).string();
       const PlanFolder f = readPlanFolder(dir);
       if (f.plan.is_null()) throw InputError("plan '" + req.name + "' has no plan.json");
       res.output_dir = dir;
@@ -312,6 +320,9 @@ class CellSupervisorNode {
   }
 
   SupervisorConfig config_;
+  CellFolders folders_;
+  std::string output_root_;
+  NodeDiagnostics diagnostics_;
   Server server_;
   ros::ServiceServer list_srv_, get_srv_;
   ros::WallTimer heartbeat_;

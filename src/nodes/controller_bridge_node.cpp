@@ -13,10 +13,11 @@
 //             reason. One program at a time: a request while the last one is being built or is still running on the
 //             controller is refused with a reason (cancel it first: the follow_joint_trajectory action's cancel).
 //             With wait, a program cancelled or preempted on the controller answers success=false, error_code
-//             PREEMPTED (-6) and the controller's reason.
+//             PREEMPTED (-6) and the controller's reason. FOLDER must lie under /art2part/output_root (cell_folders.h;
+//             relative: under it), rate 0 or 1..1000.
 //   action client: follow_joint_trajectory (FollowJointTrajectory), when a server is there
 //   topics:   joint_trajectory (trajectory_msgs/JointTrajectory, latched), the last trajectory built;
-//             subscribes joint_states (sensor_msgs/JointState)
+//             subscribes joint_states (sensor_msgs/JointState); /diagnostics (node_diagnostics.h)
 #include <actionlib/client/simple_action_client.h>
 #include <ros/ros.h>
 #include <sensor_msgs/JointState.h>
@@ -29,12 +30,15 @@
 #include <mutex>
 #include <optional>
 
+#include "art2part/common/request_limits.h"
 #include "art2part/post/fixture_placement.h"
 #include "art2part/post/joint_trajectory.h"
 #include "art2part/post/machine_program.h"
 #include "art2part/tooling/tool.h"
 #include "art2part/tooling/toolpath.h"
+#include "cell_folders.h"
 #include "machine_conversions.h"
+#include "node_diagnostics.h"
 
 namespace art2part {
 
@@ -54,6 +58,9 @@ class ControllerBridge {
     state_sub_ = nh.subscribe("joint_states", 10, &ControllerBridge::onJointState, this);
     service_ = nh.advertiseService("run_program", &ControllerBridge::runProgram, this);
     ROS_INFO("controller_bridge: machine %s (%s)", machine_.name.c_str(), kinematicsModuleName(machine_.kind).c_str());
+    diagnostics_.setConfiguration("machine", machine_.name);
+    diagnostics_.setConfiguration("output root", folderList(folders_.plans));
+    for (const std::string& problem : folders_.problems) diagnostics_.addProblem(problem);
   }
 
  private:
@@ -125,11 +132,27 @@ class ControllerBridge {
     std::string busy_;
   };
 
+  // run_program as /diagnostics counts it: refused when the request or its files were bad (or the bridge busy),
+  // cancelled when the controller's goal was cancelled or preempted, failed when it did not run to the end.
   bool runProgram(RunToolpaths::Request& req, RunToolpaths::Response& res) {
-    const Claim claim(*this);
+    NodeDiagnostics::Request request = diagnostics_.request("run_program");
+    runProgramUnrecorded(req, res);
+    request.finish(res.success                                                 ? RequestOutcome::Served
+                   : res.error_code == FollowJointTrajectoryResult::PREEMPTED ? RequestOutcome::Cancelled
+                   : res.sent                                                 ? RequestOutcome::Failed
+                                                                              : RequestOutcome::Refused,
+                   res.message);
+    return true;
+  }
+
+  bool runProgramUnrecorded(RunToolpaths::Request& req, RunToolpaths::Response& res) {
+    const Claim claim(*this);  // one program at a time
     try {
       if (!claim.busy().empty()) throw InputError(claim.busy());
-      if (req.folder.empty()) throw InputError("name a folder holding toolpaths.csv and tools.json");
+      // The request's checks: the folder under the output root (the rest of the callback reads the resolved one),
+      // the rate in range.
+      req.folder = confinedField(folders_.plans, "folder", req.folder);
+      checkedRequestValue(req.rate, request_limits::kTrajectoryRate);
       namespace fs = std::filesystem;
       if (!fs::is_directory(req.folder)) throw InputError(req.folder + " is not a folder");
       for (const char* file : {"toolpaths.csv", "tools.json"})
@@ -204,6 +227,8 @@ class ControllerBridge {
     return true;
   }
 
+  const CellFolders folders_ = readCellFolders(false);
+  NodeDiagnostics diagnostics_;
   Machine machine_;
   double rate_ = 50, controller_wait_ = 2;
   PostOptions post_options_;

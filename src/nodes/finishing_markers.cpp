@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "art2part/common/request_limits.h"
 #include "marker_helpers.h"
 #include "part_conversions.h"
 
@@ -11,20 +12,9 @@ namespace art2part {
 
 namespace {
 
-constexpr int kMaxLevel = 7;
-
-std::string fmt(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
-}
-
-// A length of the goal in metres as mm within (0, max_mm]; 0 gives `default_mm`.
-double lengthMm(double metres, const std::string& field, double default_mm, double max_mm) {
-  if (!std::isfinite(metres) || metres < 0 || metres * 1000 > max_mm)
-    throw InputError(field + " " + fmt(metres) + " must be a length in metres, 0.." + fmt(max_mm / 1000) + " (0 = " +
-                     fmt(default_mm / 1000) + ")");
-  return metres > 0 ? metres / kMetresPerMm : default_mm;
+// A length of the goal in metres as mm, within its range (request_limits.h); 0 gives `default_mm`.
+double lengthMm(double metres, const RequestRange& range, double default_mm) {
+  return checkedRequestValue(metres, range) > 0 ? metres / kMetresPerMm : default_mm;
 }
 
 RgbColour kindColour(const std::string& kind) {
@@ -43,15 +33,14 @@ RgbColour kindColour(const std::string& kind) {
 PlanOptions finishingPlanOptionsFrom(const PlanFinishingGoal& goal) {
   if (!goal.mode.empty() && goal.mode != "3axis" && goal.mode != "5axis")
     throw InputError("unknown mode '" + goal.mode + "' (use 3axis or 5axis)");
-  if (goal.level < 0 || goal.level > kMaxLevel)
-    throw InputError("level " + std::to_string(goal.level) + " is out of range 1.." + std::to_string(kMaxLevel) +
-                     " (0 = default " + std::to_string(kDefaultFinishingLevel) + ")");
+  checkedRequestValue(goal.level, request_limits::kSphereLevel);
   PlanOptions options;
   options.setups.mode = parseMachineMode(goal.mode.empty() ? std::string("3axis") : goal.mode);
   options.roughing.five_axis = false;
   options.visibility.level = goal.level != 0 ? goal.level : kDefaultFinishingLevel;
-  options.roughing.allowance = lengthMm(goal.allowance_m, "allowance_m", options.roughing.allowance, 5.0);
-  options.finishing.surface.scallop = lengthMm(goal.scallop_m, "scallop_m", options.finishing.surface.scallop, 1.0);
+  options.roughing.allowance = lengthMm(goal.allowance_m, request_limits::kAllowance, options.roughing.allowance);
+  options.finishing.surface.scallop =
+      lengthMm(goal.scallop_m, request_limits::kScallop, options.finishing.surface.scallop);
   options.verify = false;
   return options;
 }

@@ -7,9 +7,12 @@
 //             written to the goal's output_dir when it names one
 //   topics:   ~markers (MarkerArray, latched): DELETEALL, finishing feeds by operation kind (ns finishing_<kind>),
 //             rapids (ns finishing_rapids), per face its tool direction as an arrow (ns face_directions), metres
-//   params:   ~frame_id (default "part"), ~tools (the tool library; default the package's config/tools.yaml)
-// A bad goal (unknown part, bad mode, level or length, an unwritable output_dir) is aborted with a one-line reason in
-// result.message; the node stays up. A cancel stops the plan at the next stage or group of faces; it ends preempted.
+//             (markers: every namespace under "<part_id>/", a DELETEALL first; marker_helpers' forPart)
+//   params:   ~frame_id (default "part"), ~tools (the tool library; default the package's config/tools.yaml);
+//             /art2part/output_root (cell_folders.h): output_dir must lie under it (relative: under it)
+//   topics:   /diagnostics (node_diagnostics.h)
+// A bad goal (unknown part, bad mode, level or length, an output_dir outside the output root or unwritable) is
+// aborted with a one-line reason in result.message; the node stays up. A cancel stops the plan at the next stage or group of faces; it ends preempted.
 #include <actionlib/server/simple_action_server.h>
 #include <ros/ros.h>
 
@@ -17,8 +20,11 @@
 #include <filesystem>
 #include <memory>
 
+#include "cell_folders.h"
 #include "finishing_markers.h"
+#include "node_diagnostics.h"
 #include "part_client.h"
+#include "marker_helpers.h"
 
 #ifndef ART2PART_CONFIG_DIR
 #error "ART2PART_CONFIG_DIR (the package's config folder) must be defined by the build"
@@ -33,6 +39,9 @@ class FinishingPlannerNode {
     pnh.param<std::string>("frame_id", frame_id_, "part");
     pnh.param<std::string>("tools", tools_path_, std::string(ART2PART_CONFIG_DIR) + "/tools.yaml");
     markers_pub_ = pnh.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
+    diagnostics_.setConfiguration("output root", folderList(folders_.plans));
+    diagnostics_.setConfiguration("tools", tools_path_);
+    for (const std::string& problem : folders_.problems) diagnostics_.addProblem(problem);
     server_.start();
     ROS_INFO("plan_finishing ready (tools: %s)", tools_path_.c_str());
   }
@@ -41,8 +50,11 @@ class FinishingPlannerNode {
   void execute(const PlanFinishingGoalConstPtr& goal) {
     PlanFinishingResult result;
     const auto start = std::chrono::steady_clock::now();
+    NodeDiagnostics::Request request = diagnostics_.request("plan_finishing");
     try {
       const PlanOptions options = finishingPlanOptionsFrom(*goal);  // checked before anything is fetched
+      const std::string output_dir =
+          goal->output_dir.empty() ? "" : outputFolder(folders_, "output_dir", goal->output_dir);
       const ToolLibrary library = loadToolLibrary(tools_path_);
       PlanFinishingFeedback f;
       f.stage = "fetching part";
@@ -62,10 +74,11 @@ class FinishingPlannerNode {
         result.message = "preempted";
         result.seconds = secondsSince(start);
         server_.setPreempted(result, result.message);
+        request.finish(RequestOutcome::Cancelled, result.message);
         return;
       }
       fillFinishingResult(*part, plan, result);
-      if (!goal->output_dir.empty()) writeFiles(plan, goal->output_dir);
+      if (!output_dir.empty()) writeFiles(plan, output_dir);
       result.mode = machineModeName(plan.setups.mode);
       result.success = true;
       result.seconds = secondsSince(start);
@@ -73,9 +86,10 @@ class FinishingPlannerNode {
       f.stage = "done";
       f.fraction = 1;
       server_.publishFeedback(f);
-      markers_pub_.publish(finishingMarkers(*part, plan, frame_id_));
+      markers_pub_.publish(forPart(id, finishingMarkers(*part, plan, frame_id_)));
       ROS_INFO("plan_finishing: %s", result.message.c_str());
       server_.setSucceeded(result);
+      request.finish(RequestOutcome::Served, result.message);
     } catch (const std::exception& e) {  // InputError (a bad goal) and anything else: no crash
       const bool preempted = server_.isPreemptRequested();
       result = PlanFinishingResult();
@@ -85,6 +99,7 @@ class FinishingPlannerNode {
       ROS_WARN("plan_finishing: %s", result.message.c_str());
       if (preempted) server_.setPreempted(result, result.message);
       else server_.setAborted(result, result.message);
+      request.finish(preempted ? RequestOutcome::Cancelled : outcomeOf(e), result.message);
     }
   }
 
@@ -124,6 +139,8 @@ class FinishingPlannerNode {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
 
+  const CellFolders folders_ = readCellFolders(true);
+  NodeDiagnostics diagnostics_;
   actionlib::SimpleActionServer<PlanFinishingAction> server_;
   std::string frame_id_, tools_path_;
   ros::Publisher markers_pub_;

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstdint>
 #include <sstream>
+#include <utility>
+
+#include "art2part/common/request_limits.h"
 
 namespace art2part {
 
@@ -114,6 +117,11 @@ TrajectoryCheck checkTrajectoryGoal(const Machine& machine, const trajectory_msg
   if (!goal_tolerance.empty() && goal_tolerance.size() != n)
     return fail(TrajectoryCheck::InvalidGoal, "goal_tolerance has " + std::to_string(goal_tolerance.size()) +
                                                   " values for " + std::to_string(n) + " joints");
+  for (const auto& [values, range] : {std::pair(&path_tolerance, request_limits::kPathTolerance),
+                                      std::pair(&goal_tolerance, request_limits::kGoalTolerance)})
+    for (std::size_t i = 0; i < values->size(); ++i)
+      if (const std::string reason = rangeViolation((*values)[i], range); !reason.empty())
+        return fail(TrajectoryCheck::InvalidGoal, "joint " + msg.joint_names[i] + ": " + reason);
   if (msg.points.empty()) return fail(TrajectoryCheck::InvalidGoal, "the trajectory has no points");
 
   for (std::size_t p = 0; p < msg.points.size(); ++p) {

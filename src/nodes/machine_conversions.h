@@ -54,7 +54,8 @@ struct TrajectoryCheck {
 // a negative time or times not strictly increasing; a position outside the travel (give or take
 // limit_tolerance, core units); a velocity above max_velocity, given or implied by consecutive positions (the mean
 // velocity between two points), allowing velocity_tolerance (relative) for rounding; path / goal tolerance arrays
-// whose length is neither 0 nor the joint count.
+// whose length is neither 0 nor the joint count, or a tolerance outside its range (request_limits.h: NaN, negative,
+// mm or deg for m or rad).
 TrajectoryCheck checkTrajectoryGoal(const Machine& machine, const trajectory_msgs::JointTrajectory& msg,
                                     const std::vector<double>& path_tolerance = {},
                                     const std::vector<double>& goal_tolerance = {}, double limit_tolerance = 1e-9,

@@ -44,6 +44,29 @@ visualization_msgs::Marker deleteAllMarker(const std::string& frame_id) {
   return clear;
 }
 
+visualization_msgs::MarkerArray forPart(const std::string& part_id, visualization_msgs::MarkerArray markers) {
+  visualization_msgs::MarkerArray out;
+  const std::string frame_id = markers.markers.empty() ? std::string() : markers.markers.front().header.frame_id;
+  out.markers.push_back(deleteAllMarker(frame_id));
+  for (visualization_msgs::Marker& m : markers.markers) {
+    if (m.action == visualization_msgs::Marker::DELETEALL) continue;
+    m.ns = partNamespace(part_id, m.ns);
+    out.markers.push_back(std::move(m));
+  }
+  return out;
+}
+
+std::string partNamespace(const std::string& part_id, const std::string& ns) {
+  return part_id.empty() ? ns : part_id + "/" + ns;
+}
+
+std::string partIdOfFile(const std::string& path) {
+  const std::string trimmed = path.substr(0, path.find_last_not_of('/') + 1);
+  const std::string name = trimmed.substr(trimmed.find_last_of('/') + 1);
+  const std::size_t dot = name.find_last_of('.');
+  return dot == std::string::npos || dot == 0 ? name : name.substr(0, dot);
+}
+
 void appendMoves(visualization_msgs::Marker& lines, const Toolpath& path, std::size_t first, std::size_t last,
                  MoveKind kind) {
   for (std::size_t j = first + 1; j < last && j < path.size(); ++j) {

@@ -5,6 +5,7 @@
 #include <std_msgs/ColorRGBA.h>
 #include <geometry_msgs/Vector3.h>
 #include <visualization_msgs/Marker.h>
+#include <visualization_msgs/MarkerArray.h>
 
 #include <array>
 #include <string>
@@ -24,6 +25,16 @@ visualization_msgs::Marker lineMarker(const std::string& frame_id, const std::st
 
 // A marker that deletes every marker of the topic (the pictures of an earlier plan go).
 visualization_msgs::Marker deleteAllMarker(const std::string& frame_id);
+
+// The markers of part `part_id`: each namespace becomes "<part_id>/<ns>" and one DELETEALL goes first (any others are
+// dropped), so two parts never mix on a topic and the pictures of the part planned before go.
+visualization_msgs::MarkerArray forPart(const std::string& part_id, visualization_msgs::MarkerArray markers);
+
+// The namespace of a marker of part `part_id` ("<part_id>/<ns>"; `ns` alone when the id is empty).
+std::string partNamespace(const std::string& part_id, const std::string& ns);
+
+// The id a part loaded from `path` gets by default: the file's (or folder's) name without folders and extension.
+std::string partIdOfFile(const std::string& path);
 
 // Appends the segments of `path` from point `first` to `last` (exclusive) whose move is `kind` to a LINE_LIST.
 void appendMoves(visualization_msgs::Marker& lines, const Toolpath& path, std::size_t first, std::size_t last,

@@ -7,6 +7,7 @@
 #include <system_error>
 #include <utility>
 
+#include "art2part/common/request_limits.h"
 #include "art2part/roughing/shadow.h"
 #include "marker_helpers.h"
 #include "part_conversions.h"
@@ -16,23 +17,10 @@ namespace art2part {
 
 namespace {
 
-constexpr int kMaxLevel = 7;  // what analyseVisibility accepts
-
-std::string fmt(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
+// A length of the goal in metres as mm, within its range (request_limits.h); 0 gives `default_mm`.
+double lengthMm(double metres, const RequestRange& range, double default_mm) {
+  return checkedRequestValue(metres, range) > 0 ? metres / kMetresPerMm : default_mm;
 }
-
-// A length of the goal in metres as mm; 0 gives `default_mm`.
-double lengthMm(double metres, const std::string& field, double default_mm, const std::string& default_text) {
-  if (!std::isfinite(metres) || metres < 0)
-    throw InputError(field + " " + fmt(metres) + " must be a length in metres, not negative (0 = " + default_text + ")");
-  return metres > 0 ? metres / kMetresPerMm : default_mm;
-}
-
-
-
 
 // The levels of the operations of setup k, highest first, duplicates (main and rest operations share heights) merged;
 // critical when any operation says so.
@@ -63,9 +51,7 @@ SetupOptions roughingSetupOptionsFrom(const PlanRoughingGoal& goal) {
 }
 
 VisibilityOptions roughingVisibilityOptionsFrom(const PlanRoughingGoal& goal) {
-  if (goal.level < 0 || goal.level > kMaxLevel)
-    throw InputError("level " + std::to_string(goal.level) + " is out of range 1.." + std::to_string(kMaxLevel) +
-                     " (0 = default " + std::to_string(kDefaultRoughingLevel) + ")");
+  checkedRequestValue(goal.level, request_limits::kSphereLevel);
   VisibilityOptions options;
   options.level = goal.level != 0 ? goal.level : kDefaultRoughingLevel;
   return options;
@@ -74,8 +60,8 @@ VisibilityOptions roughingVisibilityOptionsFrom(const PlanRoughingGoal& goal) {
 RoughingOptions roughingOptionsFrom(const PlanRoughingGoal& goal, const ToolLibrary& library,
                                     const std::string& library_path) {
   RoughingOptions options;
-  options.allowance = lengthMm(goal.allowance_m, "allowance_m", options.allowance, "default 0.0003");
-  options.stepdown = lengthMm(goal.stepdown_m, "stepdown_m", 0.0, "the tool's max_stepdown");
+  options.allowance = lengthMm(goal.allowance_m, request_limits::kAllowance, options.allowance);
+  options.stepdown = lengthMm(goal.stepdown_m, request_limits::kStepdown, 0.0);
   options.rest_pass = goal.rest_pass;
   if (!goal.tool.empty()) {
     const Tool* tool = library.find(goal.tool);

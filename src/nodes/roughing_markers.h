@@ -31,7 +31,7 @@ VisibilityOptions roughingVisibilityOptionsFrom(const PlanRoughingGoal& goal);
 
 // Roughing options in mm: allowance_m (0 = 0.3 mm), stepdown_m (0 = the tool's), tool, rest_pass. The tool must be
 // a flat or bull end mill of `library` (read from `library_path`, named in the message). Throws InputError naming
-// the field for a negative or non-finite length, an unknown tool, a tool that cannot rough.
+// the field for a length outside its range (request_limits.h), an unknown tool, a tool that cannot rough.
 RoughingOptions roughingOptionsFrom(const PlanRoughingGoal& goal, const ToolLibrary& library,
                                     const std::string& library_path);
 

@@ -7,9 +7,12 @@
 //             written to the goal's output_dir when it names one
 //   topics:   ~markers (MarkerArray, latched): DELETEALL, per operation its feed moves coloured by tool (ns feed_<i>)
 //             and its rapids thin and grey (ns rapid_<i>), per setup its levels as squares (ns slabs_<k>), metres
-//   params:   ~frame_id (default "part"), ~tools (the tool library; default the package's config/tools.yaml)
-// A bad goal (unknown part or tool, a tool that cannot rough, a bad mode or number, an unwritable output_dir) is
-// aborted with a one-line reason in result.message; the node stays up. A cancel, or a new goal, stops the running one
+//             (markers: every namespace under "<part_id>/", a DELETEALL first; marker_helpers' forPart)
+//   params:   ~frame_id (default "part"), ~tools (the tool library; default the package's config/tools.yaml);
+//             /art2part/output_root (cell_folders.h): output_dir must lie under it (relative: under it)
+//   topics:   /diagnostics (node_diagnostics.h)
+// A bad goal (unknown part or tool, a tool that cannot rough, a bad mode or number, an output_dir outside the output
+// root or unwritable) is aborted with a one-line reason in result.message; the node stays up. A cancel, or a new goal, stops the running one
 // at the next stage or setup (a setup being roughed is finished first); it ends preempted.
 #include "roughing_markers.h"  // first: the message MachiningOperation beside the core's RoughingOperation
 
@@ -21,7 +24,10 @@
 #include <memory>
 #include <stdexcept>
 
+#include "cell_folders.h"
+#include "node_diagnostics.h"
 #include "part_client.h"
+#include "marker_helpers.h"
 
 #ifndef ART2PART_CONFIG_DIR
 #error "ART2PART_CONFIG_DIR (the package's config folder) must be defined by the build"
@@ -51,6 +57,9 @@ class RoughingPlannerNode {
     pnh.param<std::string>("frame_id", frame_id_, "part");
     pnh.param<std::string>("tools", tools_path_, std::string(ART2PART_CONFIG_DIR) + "/tools.yaml");
     markers_pub_ = pnh.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
+    diagnostics_.setConfiguration("output root", folderList(folders_.plans));
+    diagnostics_.setConfiguration("tools", tools_path_);
+    for (const std::string& problem : folders_.problems) diagnostics_.addProblem(problem);
     server_.start();
     ROS_INFO("plan_roughing ready (tools: %s)", tools_path_.c_str());
   }
@@ -64,12 +73,15 @@ class RoughingPlannerNode {
   void execute(const PlanRoughingGoalConstPtr& goal) {
     PlanRoughingResult result;
     const auto start = std::chrono::steady_clock::now();
+    NodeDiagnostics::Request request = diagnostics_.request("plan_roughing");
     try {
       // Everything the goal says is checked before the part is fetched and analysed.
       const SetupOptions setup_options = roughingSetupOptionsFrom(*goal);
       const VisibilityOptions visibility_options = roughingVisibilityOptionsFrom(*goal);
       const ToolLibrary library = loadToolLibrary(tools_path_);  // each goal: edits to the file count
       const RoughingOptions options = roughingOptionsFrom(*goal, library, tools_path_);
+      const std::string output_dir =
+          goal->output_dir.empty() ? "" : outputFolder(folders_, "output_dir", goal->output_dir);
 
       PlanRoughingFeedback f;
       f.stage = "fetching part";
@@ -92,7 +104,7 @@ class RoughingPlannerNode {
       const SetupPlan setups = planSetups(*part, visibility, setup_options);
 
       const RoughingPlan plan = roughEachSetup(*part, setups, library, options, f);
-      if (!goal->output_dir.empty()) writeRoughingFiles(plan, library, goal->output_dir);
+      if (!output_dir.empty()) writeRoughingFiles(plan, library, output_dir);
 
       fillResult(plan, result);
       result.mode = machineModeName(setups.mode);
@@ -100,9 +112,10 @@ class RoughingPlannerNode {
       result.success = true;
       result.message = summary(id, setups, plan, result, goal->output_dir);
       result.seconds = secondsSince(start);
-      markers_pub_.publish(roughingMarkers(*part, setups, plan, options, frame_id_));
+      markers_pub_.publish(forPart(id, roughingMarkers(*part, setups, plan, options, frame_id_)));
       ROS_INFO("plan_roughing: %s", result.message.c_str());
       server_.setSucceeded(result);
+      request.finish(RequestOutcome::Served, result.message);
     } catch (const std::exception& e) {  // InputError (a bad goal), a cancelled goal and anything else: no crash
       const bool stopped = dynamic_cast<const Preempted*>(&e) != nullptr;
       const bool preempted = stopped || server_.isPreemptRequested();
@@ -113,31 +126,29 @@ class RoughingPlannerNode {
       ROS_WARN("plan_roughing: %s", result.message.c_str());
       if (preempted) server_.setPreempted(result, result.message);
       else server_.setAborted(result, result.message);
+      request.finish(preempted ? RequestOutcome::Cancelled : outcomeOf(e), result.message);
     }
   }
 
   // planRoughing over every setup (the core's tool choice, rest passes and stock between setups, unchanged), with
-  // feedback before each setup and for each operation planned.
+  // feedback after every level; a cancel stops it within a level.
   RoughingPlan roughEachSetup(const Part& part, const SetupPlan& setups, const ToolLibrary& library,
                               const RoughingOptions& options, PlanRoughingFeedback& f) {
     const int n = static_cast<int>(setups.setups.size());
     f.stage = "roughing";
     f.setups = static_cast<uint32_t>(n);
-    std::size_t reported = 0;  // operations already told of
-    RoughingPlan plan = planRoughing(part, setups, library, options, [&](int k, const RoughingPlan& so_far) {
-      for (; reported < so_far.operations.size(); ++reported) {
-        const RoughingOperation& op = so_far.operations[reported];
-        f.levels_done += static_cast<uint32_t>(op.levels.size());
-        f.operations += 1;
-        f.operation = "setup " + std::to_string(op.setup) + ": " + op.kind + ", " + op.tool + ", " +
-                      std::to_string(op.levels.size()) + " levels, " + std::to_string(op.path.size()) + " points";
-      }
-      f.setup = static_cast<uint32_t>(std::min(k + 1, n));
-      f.fraction = static_cast<double>(k) / std::max(n, 1);
-      feedback(f);
+    RoughingPlan plan = planRoughing(part, setups, library, options, [&](const ProgressReport& p) {
+      f.setup = static_cast<uint32_t>(std::min(n, static_cast<int>(p.fraction * n) + 1));
+      f.fraction = p.fraction;
+      f.levels_done = static_cast<uint32_t>(p.done);
+      f.operation = p.message;
+      server_.publishFeedback(f);
+      return !server_.isPreemptRequested() && ros::ok();
     });
+    if (plan.cancelled) throw Preempted();
     f.stage = "done";
     f.fraction = 1;
+    f.operations = static_cast<uint32_t>(plan.operations.size());
     server_.publishFeedback(f);
     return plan;
   }
@@ -163,6 +174,8 @@ class RoughingPlannerNode {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
 
+  const CellFolders folders_ = readCellFolders(true);
+  NodeDiagnostics diagnostics_;
   actionlib::SimpleActionServer<PlanRoughingAction> server_;
   std::string frame_id_, tools_path_;
   ros::Publisher markers_pub_;

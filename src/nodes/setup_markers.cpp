@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "art2part/common/request_limits.h"
 #include "art2part/sphere/special_directions.h"
 #include "art2part/visibility/cones.h"
 #include "part_conversions.h"
@@ -90,21 +91,16 @@ SetupOptions setupOptionsFrom(const PlanSetupsRequest& request) {
   if (!request.mode.empty() && request.mode != "3axis" && request.mode != "5axis")
     throw InputError("unknown mode '" + request.mode + "' (use 3axis or 5axis)");
   options.mode = parseMachineMode(request.mode.empty() ? std::string("3axis") : request.mode);
-  if (!std::isfinite(request.max_tilt_deg) || request.max_tilt_deg < 0 || request.max_tilt_deg > 180)
-    throw InputError("max_tilt_deg " + fmt(request.max_tilt_deg) + " is out of range 0..180 (0 = default 110)");
-  if (request.max_tilt_deg > 0) options.max_tilt_deg = request.max_tilt_deg;
-  if (!std::isfinite(request.time_limit) || request.time_limit < 0)
-    throw InputError("time_limit " + fmt(request.time_limit) + " must be a positive number of seconds (0 = default 5)");
-  if (request.time_limit > 0) options.time_limit_s = request.time_limit;
+  if (checkedRequestValue(request.max_tilt_deg, request_limits::kMaxTilt) > 0)
+    options.max_tilt_deg = request.max_tilt_deg;
+  if (checkedRequestValue(request.time_limit, request_limits::kSetupTimeLimit) > 0)
+    options.time_limit_s = request.time_limit;
   return options;
 }
 
 VisibilityOptions visibilityOptionsFrom(const PlanSetupsRequest& request) {
   VisibilityOptions options;
-  if (request.level < 0 || request.level > kMaxLevel)
-    throw InputError("level " + std::to_string(request.level) + " is out of range 1.." + std::to_string(kMaxLevel) +
-                     " (0 = default " + std::to_string(options.level) + ")");
-  if (request.level != 0) options.level = request.level;
+  if (checkedRequestValue(request.level, request_limits::kSphereLevel) != 0) options.level = request.level;
   options.special_directions = !request.no_special_directions;
   return options;
 }

@@ -26,7 +26,7 @@ namespace art2part {
 // ---- the request -------------------------------------------------------------------------------------------------
 
 // Planner options of a request: mode ("" = 3axis), max_tilt_deg (0 = 110), time_limit (0 = 5 s). Throws InputError
-// naming the field for an unknown mode, a tilt outside 0..180 deg, a negative or non-finite time limit.
+// naming the field for an unknown mode, a tilt or time limit outside its range (request_limits.h).
 SetupOptions setupOptionsFrom(const PlanSetupsRequest& request);
 
 // Visibility options for the analysis done here: level 0 = 4, else 1..7; special directions unless

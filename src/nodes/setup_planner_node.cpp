@@ -5,7 +5,9 @@
 //             withdrawn: when a plan has fewer setups than one before it, the leftover setup_<k> are re-sent under
 //             the parameter ~unused_frame_id (default "unused_setups", a frame with no parent), so looking them up
 //             from part fails instead of showing an old plan.
-//   topics:   setup_markers (MarkerArray, latched): DELETEALL, an arrow and a label per setup, the part by setup
+//   topics:   setup_markers (MarkerArray, latched): DELETEALL, an arrow and a label per setup, the part by setup;
+//             /diagnostics (node_diagnostics.h)
+//             (markers: every namespace under "<part_id>/", a DELETEALL first; marker_helpers' forPart)
 // A bad request answers success=false with the reason; the node stays up. Requests run in parallel (AsyncSpinner);
 // when plans finish out of order, the markers and frames shown are those of the most recent request.
 #include "setup_markers.h"  // first: it renames the message art2part::Setup (see there)
@@ -17,7 +19,9 @@
 #include <chrono>
 #include <mutex>
 
+#include "node_diagnostics.h"
 #include "part_client.h"
+#include "marker_helpers.h"
 
 namespace art2part {
 
@@ -34,6 +38,7 @@ class SetupPlannerNode {
   bool plan(PlanSetups::Request& req, PlanSetups::Response& res) {
     const auto start = std::chrono::steady_clock::now();
     const long ticket = ++requests_;
+    NodeDiagnostics::Request request = diagnostics_.request("plan_setups");
     try {
       const SetupOptions options = setupOptionsFrom(req);
       const bool given = carriesVisibility(req);
@@ -56,26 +61,30 @@ class SetupPlannerNode {
                     " unmachinable triangles; " + std::to_string(visibility.map.triangles()) + " triangles x " +
                     std::to_string(visibility.map.directions()) + " directions " +
                     (given ? "from the request" : "analysed here");
-      publish(ticket, *part, plan, res.setups);
+      publish(ticket, id, *part, plan, res.setups);
+      request.finish(RequestOutcome::Served, res.message);
     } catch (const std::exception& e) {  // InputError (a bad request) and anything else: an answer, not a crash
       res = PlanSetups::Response();
       res.success = false;
       res.message = e.what();
       ROS_WARN("plan_setups: %s", e.what());
+      request.finish(outcomeOf(e), e.what());
     }
     res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return true;
   }
 
-  void publish(long ticket, const Part& part, const SetupPlan& plan, const std::vector<MachiningSetup>& setups) {
+  void publish(long ticket, const std::string& part_id, const Part& part, const SetupPlan& plan,
+               const std::vector<MachiningSetup>& setups) {
     std::lock_guard<std::mutex> lock(publish_mutex_);
     if (ticket < shown_ticket_) return;  // a later request has been shown already
     shown_ticket_ = ticket;
     tf_.sendTransform(setupTransforms(setups, frames_sent_, frame_id_, unused_frame_id_, ros::Time::now()));
     frames_sent_ = std::max(frames_sent_, static_cast<int>(setups.size()));
-    markers_pub_.publish(setupMarkers(part, plan, frame_id_));
+    markers_pub_.publish(forPart(part_id, setupMarkers(part, plan, frame_id_)));
   }
 
+  NodeDiagnostics diagnostics_;
   std::string frame_id_, unused_frame_id_;
   ros::Publisher markers_pub_;
   ros::ServiceServer service_;

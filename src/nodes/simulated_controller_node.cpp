@@ -12,7 +12,8 @@
 //             from the joints; the reason in error_string.
 //             A new goal preempts the running one; cancel stops the joints where they are (no deceleration: a
 //             simulation); either way the stopped goal ends PREEMPTED with error_code PREEMPTED and says which.
-//   topics:   joint_states (sensor_msgs/JointState) at ~rate, always (still joints too)
+//   topics:   joint_states (sensor_msgs/JointState) at ~rate, always (still joints too); /diagnostics
+//             (node_diagnostics.h: a rejected goal counts as refused, a tolerance violated as failed)
 // The simulation tracks the trajectory exactly: actual = desired (cubic Hermite between points with velocities,
 // linear otherwise), the last point's positions exactly at the end; so path and goal tolerances hold by construction
 // (they are still checked, against the same numbers).
@@ -27,6 +28,7 @@
 #include <mutex>
 
 #include "machine_conversions.h"
+#include "node_diagnostics.h"
 
 namespace art2part {
 
@@ -74,6 +76,13 @@ class SimulatedController {
   }
 
   void finish(int code, const std::string& reason, bool preempted = false) {
+    const bool rejected =
+        code == FollowJointTrajectoryResult::INVALID_GOAL || code == FollowJointTrajectoryResult::INVALID_JOINTS;
+    outcome_ = preempted                                       ? RequestOutcome::Cancelled
+               : code == FollowJointTrajectoryResult::SUCCESSFUL ? RequestOutcome::Served
+               : rejected                                      ? RequestOutcome::Refused
+                                                               : RequestOutcome::Failed;
+    outcome_message_ = reason;
     FollowJointTrajectoryResult result;
     result.error_code = code;
     result.error_string = reason;
@@ -89,6 +98,14 @@ class SimulatedController {
   }
 
   void execute(const FollowJointTrajectoryGoalConstPtr& goal) {
+    NodeDiagnostics::Request request = diagnostics_.request("follow_joint_trajectory");
+    outcome_ = RequestOutcome::Failed;
+    outcome_message_ = "ended without a result";
+    follow(goal);
+    request.finish(outcome_, outcome_message_);
+  }
+
+  void follow(const FollowJointTrajectoryGoalConstPtr& goal) {
     const trajectory_msgs::JointTrajectory& trajectory = goal->trajectory;
     const TrajectoryCheck check =
         checkTrajectoryGoal(machine_, trajectory, goal->path_tolerance, goal->goal_tolerance);
@@ -199,6 +216,9 @@ class SimulatedController {
     finish(FollowJointTrajectoryResult::SUCCESSFUL, "");
   }
 
+  NodeDiagnostics diagnostics_;
+  RequestOutcome outcome_ = RequestOutcome::Served;  // of the goal running (set by finish)
+  std::string outcome_message_;
   Machine machine_;
   actionlib::SimpleActionServer<FollowJointTrajectoryAction> server_;
   double rate_ = 50, time_scale_ = 1, start_tolerance_ = 1e-4;

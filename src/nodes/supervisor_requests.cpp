@@ -6,6 +6,7 @@
 #include <ctime>
 #include <filesystem>
 
+#include "art2part/common/request_limits.h"
 #include "art2part/geometry/mesh.h"  // InputError
 
 namespace art2part {
@@ -14,23 +15,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kMaxScallopM = 0.001;  // a 1 mm cusp is no finish: beyond it the goal has a unit slip
-
-// The path with `..`, `.` and symlinks resolved as far as it exists.
-fs::path resolved(const fs::path& p) {
-  std::error_code error;
-  fs::path r = fs::weakly_canonical(p, error);
-  return error ? p.lexically_normal() : r;
-}
-
-bool inside(const fs::path& path, const fs::path& folder) {
-  auto f = folder.begin(), p = path.begin();
-  for (; f != folder.end(); ++f, ++p) {
-    if (f->empty()) continue;  // a trailing slash
-    if (p == path.end() || *p != *f) return false;
-  }
-  return true;
-}
 
 }  // namespace
 
@@ -41,8 +25,7 @@ PlanOptions planOptionsFrom(const PlanPartGoal& goal) {
   options.setups.mode = goal.mode == "5axis" ? MachineMode::FiveAxis : MachineMode::ThreeAxis;
   options.roughing.five_axis = goal.mode == "5axis";
   options.finish = !goal.roughing_only;
-  if (!std::isfinite(goal.scallop_m) || goal.scallop_m < 0 || goal.scallop_m > kMaxScallopM)
-    throw InputError("scallop_m is metres, 0 (default 0.01 mm) to 0.001; got " + std::to_string(goal.scallop_m));
+  checkedRequestValue(goal.scallop_m, request_limits::kScallop);
   if (goal.scallop_m > 0) options.finishing.surface.scallop = goal.scallop_m * 1000;
   return options;
 }
@@ -62,17 +45,6 @@ std::string machineFileFor(const PlanPartGoal& goal, const SupervisorConfig& con
     throw InputError("no machine '" + fs::path(name).stem().string() + "' in the cell (machines: " + known + ")");
   }
   return file.string();
-}
-
-std::string confinedPartFile(const std::string& requested, const std::vector<std::string>& folders) {
-  const std::string refusal = "part_file '" + requested + "' is outside the configured part folders";
-  if (requested.empty() || folders.empty()) throw InputError(refusal);
-  fs::path p(requested);
-  if (p.is_relative()) p = fs::path(folders.front()) / p;
-  const fs::path r = resolved(p);
-  for (const std::string& folder : folders)
-    if (!folder.empty() && inside(r, resolved(folder))) return r.string();
-  throw InputError(refusal);
 }
 
 std::string newPlanFolderName(const std::string& root, const std::string& part_source) {

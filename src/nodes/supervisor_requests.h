@@ -1,6 +1,6 @@
 // The cell supervisor's requests in core terms: a plan_part goal checked and turned into PlanOptions, the machine it
-// names resolved in the package's machine folder, and the plan folders under the output root named and listed. Plain
-// functions, so the checks are tested without a node.
+// names resolved in the package's machine folder, and the plan folders under the output root named and listed (the
+// folders themselves: cell_folders.h). Plain functions, so the checks are tested without a node.
 #pragma once
 
 #include <map>
@@ -15,8 +15,6 @@ namespace art2part {
 
 // What the supervisor reads from its parameters (config/cell.yaml).
 struct SupervisorConfig {
-  std::vector<std::string> part_folders;  // where part_file may point (absolute dirs)
-  std::string output_root;                // where plan folders are written and listed
   std::string tools;                      // the tool library (tools.yaml)
   std::string machines_dir;               // config/machines: goal.machine names a file here
   std::string machine_3axis = "vmc_3axis";   // the machine when a 3-axis goal names none
@@ -33,10 +31,6 @@ PlanOptions planOptionsFrom(const PlanPartGoal& goal);
 // The machine file a goal names (a bare name, no path: "vmc_3axis" or "vmc_3axis.yaml"), or the default for its mode.
 // Throws InputError for a name with a path in it or one the folder does not hold.
 std::string machineFileFor(const PlanPartGoal& goal, const SupervisorConfig& config);
-
-// `requested` (absolute, or relative to the first folder) when it lies inside one of `folders` after resolving `..`
-// and symlinks; throws InputError otherwise, with the same message whether or not the file exists.
-std::string confinedPartFile(const std::string& requested, const std::vector<std::string>& folders);
 
 // A fresh folder name for a plan of `part_source`: its stem and the UTC time, e.g. "ctc01_20261126-083012", made
 // unique under `root` with a suffix.

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "art2part/common/request_limits.h"
 #include "art2part/simulation/part_distance.h"
 #include "art2part/tooling/tool.h"
 #include "art2part/tooling/toolpath.h"
@@ -20,11 +21,9 @@ std::string fmt(double value) {
   return text;
 }
 
-// A request's optional size: 0 keeps the default; negative or non-finite is refused.
-double sizeOr(double value, double fallback, const char* field) {
-  if (!std::isfinite(value) || value < 0)
-    throw InputError(std::string(field) + " " + fmt(value) + " must be a non-negative number of mm (0 = default)");
-  return value > 0 ? value : fallback;
+// A request's optional size in mm: 0 keeps the default; outside the range (request_limits.h) is refused.
+double sizeOr(double value, double fallback, const RequestRange& range) {
+  return checkedRequestValue(value, range) > 0 ? value : fallback;
 }
 
 std_msgs::ColorRGBA colour(float r, float g, float b, float a = 1.0f) {
@@ -55,9 +54,9 @@ visualization_msgs::Marker baseMarker(const std::string& frame_id, const std::st
 
 VerifyOptions verifyOptionsFrom(const VerifyToolpathsRequest& request) {
   VerifyOptions options;
-  options.resolution = sizeOr(request.resolution, 0.0, "resolution");
-  options.tolerance = sizeOr(request.tolerance, options.tolerance, "tolerance");
-  options.stock_margin = sizeOr(request.stock_margin, options.stock_margin, "stock_margin");
+  options.resolution = sizeOr(request.resolution, 0.0, request_limits::kVerifyResolution);
+  options.tolerance = sizeOr(request.tolerance, options.tolerance, request_limits::kVerifyTolerance);
+  options.stock_margin = sizeOr(request.stock_margin, options.stock_margin, request_limits::kStockMargin);
   return options;
 }
 

@@ -17,7 +17,7 @@ namespace art2part {
 // ---- the request -------------------------------------------------------------------------------------------------
 
 // Options of a request: resolution (0 = automatic), tolerance (0 = 0.01 mm), stock_margin (0 = 2 mm). Throws
-// InputError naming the field for a negative or non-finite number.
+// InputError naming the field for a number outside its range (request_limits.h): NaN, negative, metres for mm.
 VerifyOptions verifyOptionsFrom(const VerifyToolpathsRequest& request);
 
 // The part file a request names: part_file, or folder/mesh.stl when it is empty.

@@ -2,7 +2,8 @@
 //   action:   analyse_visibility (AnalyseVisibility): progress feedback, directions and the packed bit matrix
 //   service:  show_cone (ShowCone): publish the cone of one triangle or face of the last analysis
 //   topics:   visibility_markers (MarkerArray, latched): direction sphere and part coloured by cone size;
-//             cone_marker (Marker, latched)
+//             cone_marker (Marker, latched); /diagnostics (node_diagnostics.h)
+//             (markers: every namespace under "<part_id>/", a DELETEALL first; marker_helpers' forPart)
 // A bad goal is aborted with the reason; the node stays up.
 #include <actionlib/server/simple_action_server.h>
 #include <ros/ros.h>
@@ -13,8 +14,11 @@
 #include <chrono>
 #include <cstring>
 
+#include "art2part/common/request_limits.h"
+#include "node_diagnostics.h"
 #include "part_client.h"
 #include "visibility_markers.h"
+#include "marker_helpers.h"
 
 namespace art2part {
 
@@ -32,12 +36,12 @@ class VisibilityNode {
  private:
   static VisibilityOptions optionsFrom(const AnalyseVisibilityGoal& goal) {
     VisibilityOptions options;
-    if (goal.level != 0) options.level = goal.level;
+    if (checkedRequestValue(goal.level, request_limits::kSphereLevel) != 0) options.level = goal.level;
     options.special_directions = !goal.no_special_directions;
     options.side_correction = !goal.no_side_correction;
     if (!goal.backend.empty()) options.backend = parseVisibilityBackend(goal.backend);
-    if (goal.resolution < 0) throw InputError("resolution must not be negative");
-    options.render.resolution = goal.resolution;
+    options.render.resolution =
+        static_cast<int>(checkedRequestValue(goal.resolution, request_limits::kRenderResolution));
     return options;
   }
 
@@ -62,6 +66,7 @@ class VisibilityNode {
   void execute(const AnalyseVisibilityGoalConstPtr& goal) {
     AnalyseVisibilityResult result;
     const auto start = std::chrono::steady_clock::now();
+    NodeDiagnostics::Request request = diagnostics_.request("analyse_visibility");
     try {
       const VisibilityOptions options = optionsFrom(*goal);
       AnalyseVisibilityFeedback feedback;
@@ -82,20 +87,31 @@ class VisibilityNode {
       result.message = "part '" + id + "': " + std::to_string(analysis->map.triangles()) + " triangles x " +
                        std::to_string(analysis->map.directions()) + " directions, " +
                        std::to_string(analysis->unseen_triangles.size()) + " triangles seen from nowhere";
-      markers_pub_.publish(visibilityMarkers(*part, *analysis, frame_id_));
+      markers_pub_.publish(forPart(id, visibilityMarkers(*part, *analysis, frame_id_)));
       last_part_ = part;
+      last_id_ = id;
       last_ = analysis;
       server_.setSucceeded(result);
+      request.finish(RequestOutcome::Served, result.message);
     } catch (const std::exception& e) {
       result.success = false;
       result.message = e.what();
       ROS_WARN("analyse_visibility: %s", e.what());
-      if (server_.isPreemptRequested()) server_.setPreempted(result, e.what());
+      const bool preempted = server_.isPreemptRequested();
+      if (preempted) server_.setPreempted(result, e.what());
       else server_.setAborted(result, e.what());
+      request.finish(preempted ? RequestOutcome::Cancelled : outcomeOf(e), e.what());
     }
   }
 
   bool showCone(ShowCone::Request& req, ShowCone::Response& res) {
+    NodeDiagnostics::Request request = diagnostics_.request("show_cone");
+    coneOf(req, res);
+    request.finish(res.success ? RequestOutcome::Served : RequestOutcome::Refused, res.message);
+    return true;
+  }
+
+  bool coneOf(ShowCone::Request& req, ShowCone::Response& res) {
     if (!last_) {
       res.success = false;
       res.message = "no visibility analysis yet";
@@ -120,19 +136,24 @@ class VisibilityNode {
     const Cone cone = commonCone(last_->map, triangles);
     Vec3 apex = Vec3::Zero();
     for (int t : triangles) apex += triangleCentroid(part.mesh, t) / static_cast<double>(triangles.size());
-    cone_pub_.publish(coneMarker(part, *last_, cone, apex, frame_id_));
+    visualization_msgs::Marker cone_marker = coneMarker(part, *last_, cone, apex, frame_id_);
+    cone_marker.ns = partNamespace(last_id_, cone_marker.ns);
+    cone_pub_.publish(deleteAllMarker(frame_id_));  // the cone shown before goes, whichever part it was on
+    cone_pub_.publish(cone_marker);
     res.success = true;
     res.directions_in_cone = coneSize(cone);
     res.solid_angle = coneSolidAngle(cone, last_->directions);
     return true;
   }
 
+  NodeDiagnostics diagnostics_;
   actionlib::SimpleActionServer<AnalyseVisibilityAction> server_;
   std::string frame_id_;
   ros::Publisher markers_pub_, cone_pub_;
   ros::ServiceServer cone_srv_;
   PartClient parts_;
   std::shared_ptr<const Part> last_part_;
+  std::string last_id_;  // the part id of last_part_
   std::shared_ptr<const VisibilityResult> last_;
 };
 

@@ -12,6 +12,7 @@ struct ProgressReport {
   std::string stage;    // "visibility", "setups", "roughing", "finishing", "verification", "post"
   double fraction = 0;  // of the stage's work, 0..1, never decreasing within a stage
   std::string message;  // what it works on now, one line ("setup 2 of 3: face milling, flat10")
+  long done = 0;        // units of work finished in the stage when it counts them (roughing: levels), else 0
 };
 
 // Returns false to ask the stage to stop. An empty sink means: never stop, nobody listens.
@@ -19,8 +20,8 @@ using ProgressSink = std::function<bool(const ProgressReport&)>;
 
 // Calls `sink` when there is one; true (go on) when there is none.
 inline bool reportProgress(const ProgressSink& sink, const std::string& stage, double fraction,
-                           const std::string& message) {
-  return !sink || sink(ProgressReport{stage, fraction, message});
+                           const std::string& message, long done = 0) {
+  return !sink || sink(ProgressReport{stage, fraction, message, done});
 }
 
 }  // namespace art2part

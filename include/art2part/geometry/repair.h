@@ -52,6 +52,10 @@ RepairReport repairMesh(Mesh& mesh, std::vector<int>* kept = nullptr, const Repa
 
 MeshCheck checkMesh(const Mesh& mesh);
 
+// Whether p lies inside the closed set of triangles `tris` (or the whole closed mesh): the parity of a ray's crossings.
+bool insideTriangles(const Mesh& mesh, const std::vector<int>& tris, const Vec3& p);
+bool insideClosedMesh(const Mesh& mesh, const Vec3& p);
+
 // Orients triangles consistently across manifold edges, and each closed component outwards (positive volume).
 // Returns how many triangles were flipped.
 int orientConsistently(Mesh& mesh);

@@ -8,6 +8,8 @@
 // then a rest pass with a smaller tool over what the first left.
 #pragma once
 
+#include "art2part/common/progress.h"
+
 #include <functional>
 #include <string>
 #include <vector>
@@ -85,15 +87,29 @@ struct RoughingPlan {
   int closed_open_mesh_edges = 0;  // the part's mesh was open: the edges of its boundary, closed (solid_closure.h)
   long region_failures = 0;   // Clipper operations that reported failure while planning (regionFailures())
   int direct_levels = 0;      // levels over all operations whose grown forbidden region missed part of the shadow
+  bool cancelled = false;     // the progress sink asked to stop: the setups finished before it are kept
 };
 
-// One operation: `tool` clears the stock of one setup top-down; `before`, if given, is what a previous operation
-// left (per level of `before_levels`, remaining stock regions) and restricts this one to it.
-// `in_process`, if given, is the stock as earlier setups left it (the block otherwise).
+// Where a roughing operation starts, beside its setup's block of stock.
 class InProcessStock;
-RoughingOperation roughSetup(const Part& part, const Setup& setup, int setup_index, const Tool& tool,
-                             const RoughingOptions& options, const std::vector<SlabState>* before = nullptr,
-                             std::vector<SlabState>* after = nullptr, const InProcessStock* in_process = nullptr);
+struct RoughingStart {
+  std::vector<SlabState> previous;         // a rest pass: what the operation before it left, slab by slab from the
+                                           // top; empty: the setup's main operation
+  const InProcessStock* earlier = nullptr; // what earlier setups left of the stock; none: the block as it is
+};
+
+// One operation and the stock it leaves.
+struct RoughingPass {
+  RoughingOperation operation;
+  std::vector<SlabState> left;  // the stock after it, slab by slab from the top (a rest pass's `previous`)
+  bool cancelled = false;       // the progress sink asked to stop: the levels planned so far
+};
+
+// One operation: `tool` clears the stock of one setup top-down, level by level, restricted to `start`. Reports
+// ("roughing", the share of its levels done, the level) to `progress` after each level and stops when it says so.
+RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, const Tool& tool,
+                        const RoughingOptions& options, const RoughingStart& start = {},
+                        const ProgressSink& progress = {});
 
 // The levels of a setup for a tool: stock top down to the stock's bottom, at most `stepdown` apart, plus critical
 // heights; highest first. `frame_vertices` are the part's vertices in the setup frame.
@@ -108,12 +124,12 @@ std::vector<const Tool*> roughingTools(const ToolLibrary& library);
 const Tool* chooseRoughingTool(const Part& part, const Setup& setup, const std::vector<const Tool*>& candidates,
                                const RoughingOptions& options, const InProcessStock* in_process = nullptr);
 
-// Every setup, main and rest operations, on machiningSolid(part). Throws InputError for a tool id that the library lacks or that cannot rough.
-// `progress`, if given, hears of each setup before it is planned (setup index, the plan so far) and of the end (the
-// number of setups, the whole plan).
-using RoughingProgress = std::function<void(int setup, const RoughingPlan& so_far)>;
+// Every setup, main and rest operations, on machiningSolid(part). Throws InputError for a tool id that the library
+// lacks or that cannot rough. Reports to `progress` after every level (stage "roughing", the share of the setups
+// done, "setup k of n: <kind>, <tool>, level i of m"; ProgressReport::done counts the levels planned so far); when it
+// asks to stop, returns the setups finished so far with `cancelled` set.
 RoughingPlan planRoughing(const Part& part, const SetupPlan& setups, const ToolLibrary& library,
-                          const RoughingOptions& options = {}, const RoughingProgress& progress = {});
+                          const RoughingOptions& options = {}, const ProgressSink& progress = {});
 
 // The stock of the plan in the part frame: the part's box grown by the margin, or the stock mesh.
 Mesh roughingStock(const Part& part, const RoughingOptions& options);

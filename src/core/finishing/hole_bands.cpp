@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "art2part/geometry/repair.h"  // insideClosedMesh
 #include "hole_internal.h"
 
 namespace art2part::hole_detail {
@@ -103,26 +104,6 @@ std::vector<double> radialBands(const Mesh& mesh, const Vec3& start, const Vec3&
   return bands;
 }
 
-bool insideSolid(const Mesh& mesh, const Vec3& p) {
-  // A direction no face of a machined part lies along, so the ray meets edges and vertices only by accident.
-  const Vec3 d = Vec3(0.5377, 0.3218, 0.7790).normalized();
-  int crossings = 0;
-  for (int t = 0; t < mesh.triangleCount(); ++t) {
-    const Vec3 &a = mesh.corner(t, 0), &b = mesh.corner(t, 1), &c = mesh.corner(t, 2);
-    const Vec3 e1 = b - a, e2 = c - a, q = d.cross(e2);
-    const double det = e1.dot(q);
-    if (std::abs(det) < 1e-14) continue;
-    const Vec3 s = p - a;
-    const double u = s.dot(q) / det;
-    if (u < 0 || u > 1) continue;
-    const Vec3 r = s.cross(e1);
-    const double v = d.dot(r) / det;
-    if (v < 0 || u + v > 1) continue;
-    if (e2.dot(r) / det > 0) ++crossings;
-  }
-  return crossings % 2 == 1;
-}
-
 void measureSurroundings(const Part& part, Hole& hole, const HoleOptions& options) {
   hole.clearance_step = options.clearance_step;
   const int count = static_cast<int>(std::ceil(options.clearance_height / options.clearance_step));
@@ -143,7 +124,7 @@ void measureSurroundings(const Part& part, Hole& hole, const HoleOptions& option
   // The bands see surfaces only: a far end closed by a face that is no surface of the hole (a floor belonging to a
   // larger face, as segmentation can leave it) has solid behind it and no triangle near, so a through hole must also
   // leave the solid just past its far end.
-  if (insideSolid(part.mesh, far_end - kSolidProbe * hole.axis)) hole.free_beyond = 0;
+  if (insideClosedMesh(part.mesh, far_end - kSolidProbe * hole.axis)) hole.free_beyond = 0;
 }
 
 double holeRadiusAt(const Hole& hole, double depth) {

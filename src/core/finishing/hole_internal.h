@@ -27,8 +27,6 @@ std::vector<double> radialBands(const Mesh& mesh, const Vec3& start, const Vec3&
 // Fills free_radius, clearance_step and free_beyond of a hole whose axis, mouth, diameter, total depth and bottom are
 // set (radialBands over the part's mesh).
 void measureSurroundings(const Part& part, Hole& hole, const HoleOptions& options);
-// Whether p lies inside the closed mesh (parity of a ray's crossings).
-bool insideSolid(const Mesh& mesh, const Vec3& p);
 
 // The hole's radius at `depth` below the mouth: the widest of its segments there (a cylinder's radius, a cone's or a
 // torus's interpolated, a flat's outer radius); 0 where none is.

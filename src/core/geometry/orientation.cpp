@@ -41,9 +41,12 @@ std::vector<std::vector<Link>> linkTriangles(const Mesh& mesh, std::vector<char>
   return links;
 }
 
-// Ray parity test: is p inside the closed set of triangles `tris`?
+}  // namespace
+
+// Ray parity along a direction no face of a machined part lies along, so the ray meets edges and vertices only by
+// accident.
 bool insideTriangles(const Mesh& mesh, const std::vector<int>& tris, const Vec3& p) {
-  const Vec3 dir = Vec3(0.8182, 0.3377, 0.4652).normalized();  // generic, to avoid hitting edges exactly
+  const Vec3 dir = Vec3(0.8182, 0.3377, 0.4652).normalized();
   int crossings = 0;
   for (int t : tris) {
     const Vec3& a = mesh.corner(t, 0);
@@ -61,6 +64,14 @@ bool insideTriangles(const Mesh& mesh, const std::vector<int>& tris, const Vec3&
   }
   return crossings % 2 == 1;
 }
+
+bool insideClosedMesh(const Mesh& mesh, const Vec3& p) {
+  std::vector<int> all(mesh.triangleCount());
+  for (int t = 0; t < mesh.triangleCount(); ++t) all[t] = t;
+  return insideTriangles(mesh, all, p);
+}
+
+namespace {
 
 double componentVolume(const Mesh& mesh, const std::vector<int>& tris) {
   const Vec3 origin = mesh.corner(tris.front(), 0);

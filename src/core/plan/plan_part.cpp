@@ -238,11 +238,8 @@ PlanResult planPart(const Part& part, const ToolLibrary& library, const PlanOpti
   start = Clock::now();
   if (!stage("roughing", 0, "roughing setup 1 of " + std::to_string(r.setups.setups.size()))) return r;
   const Part rough_part = pluggedPart(part, r.holes, r.hole_methods);
-  r.roughing = planRoughing(rough_part, r.setups, library, options.roughing, [&](int k, const RoughingPlan&) {
-    const int n = static_cast<int>(r.setups.setups.size());
-    stage("roughing", n > 0 ? static_cast<double>(k) / n : 1.0,
-          k < n ? "roughing setup " + std::to_string(k + 1) + " of " + std::to_string(n) : "roughing done");
-  });
+  r.roughing = planRoughing(rough_part, r.setups, library, options.roughing, progress);
+  r.cancelled = r.cancelled || r.roughing.cancelled;
   timed("roughing", start);
   if (r.cancelled) return r;
 

@@ -133,11 +133,13 @@ std::vector<RoughingLevel> roughingLevels(const Part& part, const std::vector<Ve
   return levels;
 }
 
-RoughingOperation roughSetup(const Part& part, const Setup& setup, int setup_index, const Tool& tool,
-                             const RoughingOptions& options, const std::vector<SlabState>* before,
-                             std::vector<SlabState>* after, const InProcessStock* in_process) {
+RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, const Tool& tool,
+                        const RoughingOptions& options, const RoughingStart& start_from, const ProgressSink& progress) {
   const auto start = std::chrono::steady_clock::now();
-  RoughingOperation op;
+  RoughingPass pass;
+  RoughingOperation& op = pass.operation;
+  const std::vector<SlabState>* before = start_from.previous.empty() ? nullptr : &start_from.previous;
+  const InProcessStock* in_process = start_from.earlier;
   op.setup = setup_index;
   op.tool = tool.id;
   op.kind = before ? "rest roughing" : "roughing";
@@ -177,10 +179,19 @@ RoughingOperation roughSetup(const Part& part, const Setup& setup, int setup_ind
     in_process_slabs = in_process->slabs(setup.frame, extents);
   }
   double top = g.stock_top;
+  const std::string what = op.kind + ", " + tool.id + ", level ";
   for (RoughingLevel& level : levels) {
+    const std::size_t index = &level - levels.data();
+    if (!reportProgress(progress, "roughing", static_cast<double>(index) / levels.size(),
+                        what + std::to_string(index + 1) + " of " + std::to_string(levels.size()),
+                        static_cast<long>(index))) {
+      pass.cancelled = true;
+      levels.resize(index);
+      break;
+    }
     const double z = level.z;
     Region stock = stockSlabRegion(g.stock.vertices, g.stock.triangles, z, top);
-    if (in_process) stock = intersect(stock, in_process_slabs[&level - levels.data()]);
+    if (in_process) stock = intersect(stock, in_process_slabs[index]);
     if (before) {
       const Region* left = beforeRemaining(*before, z, top);
       stock = left ? intersect(stock, *left) : Region{};
@@ -223,9 +234,9 @@ RoughingOperation roughSetup(const Part& part, const Setup& setup, int setup_ind
   }
   op.levels = std::move(levels);
   estimateTime(tool, options, op);
-  if (after) *after = std::move(slabs);
+  pass.left = std::move(slabs);
   op.plan_seconds = secondsSince(start);
-  return op;
+  return pass;
 }
 
 }  // namespace art2part

@@ -99,6 +99,13 @@ const Tool* restTool(const std::vector<const Tool*>& candidates, const Tool& mai
   return nullptr;
 }
 
+// A setup cancelled part way is dropped whole: the in-process stock and finishing count on whole setups.
+void dropSetup(RoughingPlan& plan, int k) {
+  plan.operations.erase(std::remove_if(plan.operations.begin(), plan.operations.end(),
+                                       [k](const RoughingOperation& op) { return op.setup == k; }),
+                        plan.operations.end());
+}
+
 bool cuts(const RoughingOperation& op) {
   return std::any_of(op.path.begin(), op.path.end(), [](const CutterLocation& c) { return c.move == MoveKind::Feed; });
 }
@@ -106,7 +113,7 @@ bool cuts(const RoughingOperation& op) {
 }  // namespace
 
 RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const ToolLibrary& library,
-                          const RoughingOptions& options, const RoughingProgress& progress) {
+                          const RoughingOptions& options, const ProgressSink& progress) {
   const auto start = std::chrono::steady_clock::now();
   RoughingPlan plan;
   // An open mesh is roughed as the solid it closes (solid_closure.h), which the simulation checks against too:
@@ -129,8 +136,25 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
   if (options.in_process_stock && setups.setups.size() > 1)
     in_process = std::make_unique<InProcessStock>(part, roughingStock(part, options), options.in_process_rays);
   plan.stock_left.resize(setups.setups.size());
-  for (int k = 0; k < static_cast<int>(setups.setups.size()); ++k) {
-    if (progress) progress(k, plan);
+  const int n = static_cast<int>(setups.setups.size());
+  long levels_done = 0;
+  for (int k = 0; k < n && !plan.cancelled; ++k) {
+    // Each operation's reports as a share of all the setups, levels counted on: setup k spans [k/n, (k+1)/n], shared
+    // out among the operations it may have (the main one, the rest passes), operation j taking the j-th part.
+    const int slots = 1 + (options.rest_pass ? std::max(0, options.rest_passes) : 0);
+    int slot = 0;
+    const ProgressSink within = [&](const ProgressReport& p) {
+      const double share = (slot + std::clamp(p.fraction, 0.0, 1.0)) / slots;
+      return reportProgress(progress, "roughing", (k + share) / n,
+                            "setup " + std::to_string(k + 1) + " of " + std::to_string(n) + ": " + p.message,
+                            levels_done + p.done);
+    };
+    if (!reportProgress(progress, "roughing", static_cast<double>(k) / n,
+                        "setup " + std::to_string(k + 1) + " of " + std::to_string(n) + ": choosing the tool",
+                        levels_done)) {
+      plan.cancelled = true;
+      break;
+    }
     // What the earlier setups cut is gone from the stock this one starts from.
     if (in_process && k > 0) {
       Toolpath cut;
@@ -146,20 +170,39 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
     const InProcessStock* stock = k > 0 ? in_process.get() : nullptr;  // the first setup starts from the block
     const Tool* tool = forced ? forced : chooseRoughingTool(part, setup, candidates, options, stock);
     if (!tool) continue;
-    std::vector<SlabState> left;
-    RoughingOperation main = roughSetup(part, setup, k, *tool, options, nullptr, &left, stock);
-    if (cuts(main)) plan.operations.push_back(std::move(main));
+    RoughingStart from;
+    from.earlier = stock;
+    RoughingPass main = roughSetup(part, setup, k, *tool, options, from, within);
+    levels_done += static_cast<long>(main.operation.levels.size());
+    if (main.cancelled) {
+      plan.cancelled = true;
+      break;
+    }
+    std::vector<SlabState> left = std::move(main.left);
+    if (cuts(main.operation)) plan.operations.push_back(std::move(main.operation));
     else continue;
     // Rest passes, each with a tool at most half the size of the one before, over what that one left.
     const Tool* previous = tool;
     for (int pass = 0; options.rest_pass && pass < options.rest_passes; ++pass) {
       const Tool* rest = restTool(candidates, *previous);
       if (!rest) break;
-      std::vector<SlabState> still;
-      RoughingOperation op = roughSetup(part, setup, k, *rest, options, &left, &still, stock);
-      if (cuts(op)) plan.operations.push_back(std::move(op));
-      left = std::move(still);
+      slot = pass + 1;
+      RoughingStart after;
+      after.previous = left;
+      after.earlier = stock;
+      RoughingPass op = roughSetup(part, setup, k, *rest, options, after, within);
+      levels_done += static_cast<long>(op.operation.levels.size());
+      if (op.cancelled) {
+        plan.cancelled = true;
+        break;
+      }
+      if (cuts(op.operation)) plan.operations.push_back(std::move(op.operation));
+      left = std::move(op.left);
       previous = rest;
+    }
+    if (plan.cancelled) {
+      dropSetup(plan, k);
+      break;
     }
     plan.stock_left[k] = left;
     // 5-axis voxel roughing over what the 3-axis operations left, with a flat mill of the rest tool's size class
@@ -180,7 +223,7 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
   }
   plan.region_failures = regionFailures() - failures_before;
   plan.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (progress) progress(static_cast<int>(setups.setups.size()), plan);
+  if (!plan.cancelled) reportProgress(progress, "roughing", 1.0, "roughing done", levels_done);
   return plan;
 }
 
