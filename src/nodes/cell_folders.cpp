@@ -29,7 +29,7 @@ std::string home() {
 // folders.launch's defaults, for a node started without it.
 std::vector<std::string> defaultPartFolders() {
   const std::string package = ART2PART_SOURCE_DIR;
-  return {package + "/examples", package + "/../shared/parts", home() + "/art2part/parts"};
+  return {package + "/examples", ART2PART_SHARED_PARTS, home() + "/art2part/parts"};
 }
 
 std::string defaultOutputRoot() { return home() + "/art2part/plans"; }
