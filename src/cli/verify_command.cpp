@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "arguments.h"
+#include "art2part/plan/plan_folder.h"
 #include "art2part/geometry/mesh_io.h"
 #include "art2part/simulation/part_distance.h"
 #include "art2part/simulation/stock_mesh.h"
@@ -50,8 +51,9 @@ int runVerify(const std::vector<std::string>& args) {
                      "units", "max-listed"});
   const std::string dir = a.requirePositional(1, "one plan folder: art2part verify DIR");
   VerifyOptions options = verifyOptionsFrom(a);
-  const Toolpath path = readToolpathsCsv(dir + "/toolpaths.csv");
-  const std::vector<Tool> tools = readToolsJson(dir + "/tools.json");
+  const PlanFolder folder = readPlanFolder(dir);
+  const Toolpath& path = folder.toolpath;
+  const std::vector<Tool>& tools = folder.tools;
   LoadOptions load;
   load.unit = parseLengthUnit(a.value("units", "auto"));
   const Part part = loadPart(a.value("part", dir + "/mesh.stl"), load);

@@ -21,6 +21,7 @@
 #include <memory>
 
 #include "cell_folders.h"
+#include "art2part/plan/plan_folder.h"
 #include "finishing_markers.h"
 #include "node_diagnostics.h"
 #include "part_client.h"
@@ -104,18 +105,12 @@ class FinishingPlannerNode {
   }
 
   static void writeFiles(const PlanResult& plan, const std::string& folder) {
-    std::error_code error;
-    std::filesystem::create_directories(folder, error);
-    if (error || !std::filesystem::is_directory(folder))
-      throw InputError("output_dir '" + folder + "' cannot be made: " +
-                       (error ? error.message() : std::string("not a directory")));
     const Toolpath path = finishingToolpath(plan);
     std::vector<Tool> tools;
     for (const Tool& t : plan.tools)
       if (std::any_of(path.begin(), path.end(), [&](const CutterLocation& c) { return c.tool == t.id; }))
         tools.push_back(t);
-    writeToolpathsCsv(path, (std::filesystem::path(folder) / "toolpaths.csv").string());
-    writeToolsJson(tools, (std::filesystem::path(folder) / "tools.json").string());
+    writeToolpathFiles(folder, path, tools);
   }
 
   static std::string summary(const std::string& id, const PlanFinishingResult& result, const std::string& output_dir) {

@@ -1,5 +1,7 @@
 #include "roughing_markers.h"
 
+#include "art2part/plan/plan_folder.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -135,13 +137,7 @@ std::vector<Tool> toolsUsed(const RoughingPlan& plan, const ToolLibrary& library
 }
 
 void writeRoughingFiles(const RoughingPlan& plan, const ToolLibrary& library, const std::string& folder) {
-  std::error_code error;
-  std::filesystem::create_directories(folder, error);
-  if (error || !std::filesystem::is_directory(folder))
-    throw InputError("output_dir '" + folder + "' cannot be made: " +
-                     (error ? error.message() : std::string("not a directory")));
-  writeToolpathsCsv(wholeToolpath(plan), (std::filesystem::path(folder) / "toolpaths.csv").string());
-  writeToolsJson(toolsUsed(plan, library), (std::filesystem::path(folder) / "tools.json").string());
+  writeToolpathFiles(folder, wholeToolpath(plan), toolsUsed(plan, library));
 }
 
 // ---- rviz --------------------------------------------------------------------------------------------------------

@@ -1,5 +1,7 @@
 #include "verification_markers.h"
 
+#include "art2part/plan/plan_folder.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -67,13 +69,9 @@ std::string partFileOf(const VerifyToolpathsRequest& request) {
 void verifyFolder(const VerifyToolpathsRequest& request, FolderVerification& out) {
   const VerifyOptions options = verifyOptionsFrom(request);
   if (request.folder.empty()) throw InputError("folder is empty: name a plan folder with toolpaths.csv and tools.json");
-  std::error_code error;
-  if (!std::filesystem::is_directory(request.folder, error))
-    throw InputError("folder '" + request.folder + "' does not exist or is not a directory");
-  const Toolpath path = readToolpathsCsv(request.folder + "/toolpaths.csv");
-  const std::vector<Tool> tools = readToolsJson(request.folder + "/tools.json");
+  const PlanFolder folder = readPlanFolder(request.folder);
   out.part = loadPart(partFileOf(request));
-  out.report = verifyToolpath(out.part.mesh, out.part.triangle_face, path, tools, options, &out.state);
+  out.report = verifyToolpath(out.part.mesh, out.part.triangle_face, folder.toolpath, folder.tools, options, &out.state);
 }
 
 // ---- the response ------------------------------------------------------------------------------------------------
