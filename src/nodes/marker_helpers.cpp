@@ -21,8 +21,7 @@ geometry_msgs::Vector3 toVectorMsg(const Vec3& v) {
   return out;
 }
 
-visualization_msgs::Marker lineMarker(const std::string& frame_id, const std::string& ns, int id, int type,
-                                      double width_mm) {
+visualization_msgs::Marker baseMarker(const std::string& frame_id, const std::string& ns, int id, int type) {
   visualization_msgs::Marker m;
   m.header.frame_id = frame_id;
   m.ns = ns;
@@ -30,9 +29,16 @@ visualization_msgs::Marker lineMarker(const std::string& frame_id, const std::st
   m.type = type;
   m.action = visualization_msgs::Marker::ADD;
   m.pose.orientation.w = 1.0;
+  m.scale.x = m.scale.y = m.scale.z = 1.0;
+  m.color.a = 1.0f;
+  return m;
+}
+
+visualization_msgs::Marker lineMarker(const std::string& frame_id, const std::string& ns, int id, int type,
+                                      double width_mm) {
+  visualization_msgs::Marker m = baseMarker(frame_id, ns, id, type);
   m.scale.x = width_mm * kMetresPerMm;  // line width
   m.scale.y = m.scale.z = 0.0;
-  m.color.a = 1.0f;
   return m;
 }
 

@@ -20,6 +20,9 @@ std_msgs::ColorRGBA toColour(const RgbColour& c, float alpha = 1.0f);
 geometry_msgs::Vector3 toVectorMsg(const Vec3& v);
 
 // An empty marker of `type` (LINE_LIST, LINE_STRIP, ...) in `frame_id`, lines `width_mm` wide (metres in the message).
+// An ADD marker in frame_id: identity pose, unit scale, opaque (the caller sets points, colours and sizes).
+visualization_msgs::Marker baseMarker(const std::string& frame_id, const std::string& ns, int id, int type);
+
 visualization_msgs::Marker lineMarker(const std::string& frame_id, const std::string& ns, int id, int type,
                                       double width_mm);
 

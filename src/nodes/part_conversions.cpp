@@ -1,5 +1,7 @@
 #include "part_conversions.h"
 
+#include "marker_helpers.h"  // toVectorMsg
+
 namespace art2part {
 
 geometry_msgs::Point toPointMsg(const Vec3& mm) {
@@ -12,20 +14,12 @@ geometry_msgs::Point toPointMsg(const Vec3& mm) {
 
 namespace {
 
-geometry_msgs::Vector3 toVector(const Vec3& v) {
-  geometry_msgs::Vector3 out;
-  out.x = v.x();
-  out.y = v.y();
-  out.z = v.z();
-  return out;
-}
-
 FaceSurface toFaceMsg(const Face& f) {
   FaceSurface m;
   m.type = static_cast<uint8_t>(f.type);  // the enum order matches the message constants
-  m.normal = toVector(f.normal);
+  m.normal = toVectorMsg(f.normal);
   m.offset = f.offset * kMetresPerMm;
-  m.axis = toVector(f.axis);
+  m.axis = toVectorMsg(f.axis);
   m.point = toPointMsg(f.point);
   m.radius = f.radius * kMetresPerMm;
   m.minor_radius = f.minor_radius * kMetresPerMm;

@@ -145,11 +145,7 @@ void writeRoughingFiles(const RoughingPlan& plan, const ToolLibrary& library, co
 visualization_msgs::MarkerArray roughingMarkers(const Part& part, const SetupPlan& setups, const RoughingPlan& plan,
                                                 const RoughingOptions& options, const std::string& frame_id) {
   visualization_msgs::MarkerArray array;
-  visualization_msgs::Marker clear;
-  clear.header.frame_id = frame_id;
-  clear.action = visualization_msgs::Marker::DELETEALL;
-  clear.pose.orientation.w = 1.0;
-  array.markers.push_back(clear);
+  array.markers.push_back(deleteAllMarker(frame_id));
 
   const double diagonal = std::max(part.check.box.diagonal(), 1.0);
   const double feed_width = std::clamp(0.0015 * diagonal, 0.05, 1.0);  // mm

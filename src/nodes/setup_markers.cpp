@@ -63,20 +63,6 @@ std::vector<char> matchSpecial(const Part& part, const std::vector<Vec3>& direct
 }
 
 
-visualization_msgs::Marker baseMarker(const std::string& frame_id, const std::string& ns, int id, int type) {
-  visualization_msgs::Marker m;
-  m.header.frame_id = frame_id;
-  m.ns = ns;
-  m.id = id;
-  m.type = type;
-  m.action = visualization_msgs::Marker::ADD;
-  m.pose.orientation.w = 1.0;
-  m.scale.x = m.scale.y = m.scale.z = 1.0;
-  m.color.a = 1.0f;
-  return m;
-}
-
-
 template <class Out, class In>
 std::vector<Out> converted(const std::vector<In>& in) {
   return std::vector<Out>(in.begin(), in.end());
@@ -236,11 +222,7 @@ std::vector<geometry_msgs::TransformStamped> setupTransforms(const std::vector<M
 
 visualization_msgs::MarkerArray setupMarkers(const Part& part, const SetupPlan& plan, const std::string& frame_id) {
   visualization_msgs::MarkerArray array;
-  visualization_msgs::Marker clear;
-  clear.header.frame_id = frame_id;
-  clear.action = visualization_msgs::Marker::DELETEALL;
-  clear.pose.orientation.w = 1.0;
-  array.markers.push_back(clear);
+  array.markers.push_back(deleteAllMarker(frame_id));
 
   const Box& box = part.check.box;
   const Vec3 centre = box.center();

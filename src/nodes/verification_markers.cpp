@@ -1,5 +1,7 @@
 #include "verification_markers.h"
 
+#include "marker_helpers.h"
+
 #include "art2part/plan/plan_folder.h"
 
 #include <algorithm>
@@ -35,19 +37,6 @@ std_msgs::ColorRGBA colour(float r, float g, float b, float a = 1.0f) {
   c.b = b;
   c.a = a;
   return c;
-}
-
-visualization_msgs::Marker baseMarker(const std::string& frame_id, const std::string& ns, int type) {
-  visualization_msgs::Marker m;
-  m.header.frame_id = frame_id;
-  m.ns = ns;
-  m.id = 0;
-  m.type = type;
-  m.action = visualization_msgs::Marker::ADD;
-  m.pose.orientation.w = 1.0;
-  m.scale.x = m.scale.y = m.scale.z = 1.0;
-  m.color.a = 1.0f;
-  return m;
 }
 
 }  // namespace
@@ -106,17 +95,13 @@ StockMesh remainingStock(const FolderVerification& verification, int max_cells) 
 visualization_msgs::MarkerArray verificationMarkers(const StockMesh& stock, const VerificationReport& report,
                                                     const std::string& frame_id) {
   visualization_msgs::MarkerArray array;
-  visualization_msgs::Marker clear;
-  clear.header.frame_id = frame_id;
-  clear.action = visualization_msgs::Marker::DELETEALL;
-  clear.pose.orientation.w = 1.0;
-  array.markers.push_back(clear);
+  array.markers.push_back(deleteAllMarker(frame_id));
 
   const int T = stock.mesh.triangleCount();
   if (T > 0) {
     const double scale = std::max(report.leftover_max_mm, 10.0 * report.tolerance_mm);
     const auto colours = deviationColours(stock.deviation, scale, report.tolerance_mm);
-    auto surface = baseMarker(frame_id, "remaining_stock", visualization_msgs::Marker::TRIANGLE_LIST);
+    auto surface = baseMarker(frame_id, "remaining_stock", 0, visualization_msgs::Marker::TRIANGLE_LIST);
     surface.points.reserve(3 * static_cast<std::size_t>(T));
     surface.colors.reserve(3 * static_cast<std::size_t>(T));
     for (int t = 0; t < T; ++t) {
@@ -134,7 +119,7 @@ visualization_msgs::MarkerArray verificationMarkers(const StockMesh& stock, cons
   const double diameter_mm = std::max({4.0 * report.resolution_mm, 0.01 * report.stock_box.diagonal(), 0.1});
   auto spheres = [&](const std::string& ns, const std_msgs::ColorRGBA& c, const auto& records) {
     if (records.empty()) return;
-    auto m = baseMarker(frame_id, ns, visualization_msgs::Marker::SPHERE_LIST);
+    auto m = baseMarker(frame_id, ns, 0, visualization_msgs::Marker::SPHERE_LIST);
     m.scale.x = m.scale.y = m.scale.z = diameter_mm * kMetresPerMm;
     m.color = c;
     for (const auto& r : records) m.points.push_back(toPointMsg(r.position));

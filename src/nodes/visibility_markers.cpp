@@ -14,23 +14,11 @@ namespace {
 constexpr double kFourPi = 4.0 * 3.14159265358979323846;
 
 
-visualization_msgs::Marker baseMarker(const std::string& frame_id, const std::string& ns, int type) {
-  visualization_msgs::Marker m;
-  m.header.frame_id = frame_id;
-  m.ns = ns;
-  m.type = type;
-  m.action = visualization_msgs::Marker::ADD;
-  m.pose.orientation.w = 1.0;
-  m.scale.x = m.scale.y = m.scale.z = 1.0;
-  m.color.a = 1.0f;
-  return m;
-}
-
 visualization_msgs::Marker directionSphere(const Part& part, const VisibilityResult& r, const std::string& frame) {
   const Box& box = part.check.box;
   const double radius = 0.25 * box.diagonal();
   const Vec3 centre = box.max + Vec3(radius * 1.3, 0, 0) - Vec3(0, 0.5 * box.size().y(), 0.5 * box.size().z());
-  auto m = baseMarker(frame, "direction_sphere", visualization_msgs::Marker::SPHERE_LIST);
+  auto m = baseMarker(frame, "direction_sphere", 0, visualization_msgs::Marker::SPHERE_LIST);
   m.scale.x = m.scale.y = m.scale.z = 0.06 * radius * kMetresPerMm;
   const std::vector<int> seen = trianglesSeenPerDirection(r.map);
   const int most = std::max(1, *std::max_element(seen.begin(), seen.end()));
@@ -43,7 +31,7 @@ visualization_msgs::Marker directionSphere(const Part& part, const VisibilityRes
 }
 
 visualization_msgs::Marker partByConeSize(const Part& part, const VisibilityResult& r, const std::string& frame) {
-  auto m = baseMarker(frame, "part_by_cone", visualization_msgs::Marker::TRIANGLE_LIST);
+  auto m = baseMarker(frame, "part_by_cone", 0, visualization_msgs::Marker::TRIANGLE_LIST);
   const std::vector<double> angles = coneSolidAngles(r.map, r.directions);
   for (int t = 0; t < part.mesh.triangleCount(); ++t) {
     // A cone of a whole hemisphere (2 pi) is as open as a face gets.
@@ -68,7 +56,7 @@ visualization_msgs::MarkerArray visibilityMarkers(const Part& part, const Visibi
 
 visualization_msgs::Marker coneMarker(const Part& part, const VisibilityResult& result, const Cone& cone,
                                       const Vec3& apex_mm, const std::string& frame_id) {
-  auto m = baseMarker(frame_id, "cone", visualization_msgs::Marker::LINE_LIST);
+  auto m = baseMarker(frame_id, "cone", 0, visualization_msgs::Marker::LINE_LIST);
   m.scale.x = 0.002 * part.check.box.diagonal() * kMetresPerMm;
   const double length = 0.2 * part.check.box.diagonal();
   m.color = toColour({1.0f, 0.55f, 0.0f});

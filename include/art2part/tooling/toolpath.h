@@ -23,6 +23,13 @@ struct CutterLocation {
 
 using Toolpath = std::vector<CutterLocation>;
 
+// One point of a path (op left 0: the plan numbers operations).
+CutterLocation cutterLocation(int setup, const std::string& tool, MoveKind move, const Vec3& tip, const Vec3& axis);
+
+// `value` in fixed notation with `decimals` decimals appended to `out`, "-0.000" written as "0.000" (the files people
+// read: toolpaths.csv, trajectory.csv).
+void appendFixed(std::string& out, double value, int decimals);
+
 // Throws InputError with the file and line for a malformed file (missing column, NaN, axis not unit within 1e-3).
 Toolpath readToolpathsCsv(const std::string& path);
 void writeToolpathsCsv(const Toolpath& path, const std::string& file);

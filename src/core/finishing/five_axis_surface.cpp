@@ -200,13 +200,7 @@ SurfaceFinishingResult finishSurfaces5Axis(const Part& part, const std::vector<i
     return std::max(0.0, h + options.skin) + options.link_margin;
   };
   auto push = [&](const Vec3& tip, const Vec3& axis, MoveKind kind) {
-    CutterLocation c;
-    c.setup = setup;
-    c.tool = tool.id;
-    c.move = kind;
-    c.tip = tip;
-    c.axis = axis;
-    result.path.push_back(c);
+    result.path.push_back(cutterLocation(setup, tool.id, kind, tip, axis));
   };
   for (const std::vector<Pose>& poses : passes) {
     const Pose& first = poses.front();

@@ -48,16 +48,6 @@ void addPlug(Mesh& mesh, const Hole& hole, double top, double bottom, double ape
   }
 }
 
-CutterLocation location(const Tool& tool, int setup, MoveKind move, const Vec3& tip, const Vec3& axis) {
-  CutterLocation point;
-  point.setup = setup;
-  point.tool = tool.id;
-  point.move = move;
-  point.tip = tip;
-  point.axis = axis;
-  return point;
-}
-
 void push(Toolpath& path, CutterLocation point) {
   if (!path.empty() && path.back().move == point.move && (path.back().tip - point.tip).norm() < 1e-9) return;
   path.push_back(std::move(point));
@@ -115,11 +105,11 @@ Toolpath drillingPath(const std::vector<Hole>& holes, const Tool& tool, bool spo
     const double depth = spot ? spotDepth(hole, tool, options) : drillDepth(hole, tool, options);
     const Vec3 above = hole.mouth + (level - hole.mouth.dot(axis)) * axis;
     const Vec3 r_plane = hole.mouth + options.retract_height * axis;
-    push(path, location(tool, setup, MoveKind::Rapid, above, axis));
-    push(path, location(tool, setup, MoveKind::Rapid, r_plane, axis));
-    push(path, location(tool, setup, MoveKind::Feed, hole.mouth - depth * axis, axis));
-    push(path, location(tool, setup, MoveKind::Rapid, r_plane, axis));
-    push(path, location(tool, setup, MoveKind::Rapid, above, axis));
+    push(path, cutterLocation(setup, tool.id, MoveKind::Rapid, above, axis));
+    push(path, cutterLocation(setup, tool.id, MoveKind::Rapid, r_plane, axis));
+    push(path, cutterLocation(setup, tool.id, MoveKind::Feed, hole.mouth - depth * axis, axis));
+    push(path, cutterLocation(setup, tool.id, MoveKind::Rapid, r_plane, axis));
+    push(path, cutterLocation(setup, tool.id, MoveKind::Rapid, above, axis));
   }
   return path;
 }
@@ -142,20 +132,20 @@ Toolpath helixPath(const Hole& hole, const Tool& tool, int setup, double clearan
     return Vec3(r_plane - below_r_plane * axis + offset * (std::cos(angle) * u + std::sin(angle) * v));
   };
   Toolpath path;
-  push(path, location(tool, setup, MoveKind::Rapid, hole.mouth + (level - hole.mouth.dot(axis)) * axis, axis));
-  push(path, location(tool, setup, MoveKind::Rapid, r_plane, axis));
-  push(path, location(tool, setup, MoveKind::Feed, at(0, 0), axis));
+  push(path, cutterLocation(setup, tool.id, MoveKind::Rapid, hole.mouth + (level - hole.mouth.dot(axis)) * axis, axis));
+  push(path, cutterLocation(setup, tool.id, MoveKind::Rapid, r_plane, axis));
+  push(path, cutterLocation(setup, tool.id, MoveKind::Feed, at(0, 0), axis));
   // Down the helix (counter-clockwise seen from the spindle: climb milling inside a bore), then one turn at the floor.
   const double drop = options.retract_height + depth;
   const int steps = std::max(1, static_cast<int>(std::ceil(drop / pitch * sides)));
   for (int j = 1; j <= steps; ++j)
-    push(path, location(tool, setup, MoveKind::Feed, at(2 * kPi * j / sides, drop * j / steps), axis));
+    push(path, cutterLocation(setup, tool.id, MoveKind::Feed, at(2 * kPi * j / sides, drop * j / steps), axis));
   const double end_angle = 2 * kPi * steps / sides;
   for (int j = 1; j <= sides; ++j)
-    push(path, location(tool, setup, MoveKind::Feed, at(end_angle + 2 * kPi * j / sides, drop), axis));
-  push(path, location(tool, setup, MoveKind::Feed, hole.mouth - depth * axis, axis));
-  push(path, location(tool, setup, MoveKind::Rapid, r_plane, axis));
-  push(path, location(tool, setup, MoveKind::Rapid, hole.mouth + (level - hole.mouth.dot(axis)) * axis, axis));
+    push(path, cutterLocation(setup, tool.id, MoveKind::Feed, at(end_angle + 2 * kPi * j / sides, drop), axis));
+  push(path, cutterLocation(setup, tool.id, MoveKind::Feed, hole.mouth - depth * axis, axis));
+  push(path, cutterLocation(setup, tool.id, MoveKind::Rapid, r_plane, axis));
+  push(path, cutterLocation(setup, tool.id, MoveKind::Rapid, hole.mouth + (level - hole.mouth.dot(axis)) * axis, axis));
   return path;
 }
 

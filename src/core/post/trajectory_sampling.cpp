@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 
+#include "art2part/tooling/toolpath.h"  // appendFixed
 #include "art2part/post/joint_trajectory.h"
 
 namespace art2part {
@@ -14,14 +15,6 @@ namespace {
 constexpr double kRadToDeg = 180 / 3.14159265358979323846;
 
 std::vector<double> toStd(const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
-
-void appendFixed(std::string& out, double value, int decimals) {
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed, decimals);
-  std::string_view text(buffer, result.ptr - buffer);
-  if (text.front() == '-' && text.find_first_not_of("-0.") == std::string_view::npos) text.remove_prefix(1);
-  out += text;
-}
 
 }  // namespace
 

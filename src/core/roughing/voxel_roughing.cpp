@@ -377,16 +377,6 @@ bool approachClear(const Context& c, const Tool& tool, const Voxel& v) {
   return true;
 }
 
-CutterLocation location(int setup_index, const Tool& tool, MoveKind move, const Vec3& tip, const Vec3& axis) {
-  CutterLocation cl;
-  cl.setup = setup_index;
-  cl.tool = tool.id;
-  cl.move = move;
-  cl.tip = tip;
-  cl.axis = axis;
-  return cl;
-}
-
 Vec3 overClearance(const Context& c, const Voxel& v) {
   const Vec3 axis_frame = inFrame(v.axis, c.setup.frame);
   const double tip_z = (v.tip - c.setup.frame.origin).dot(c.setup.frame.z);
@@ -421,13 +411,13 @@ int emitRow(const Context& c, int setup_index, const Tool& tool, std::vector<Vox
       if (!pass.front()->air && pass.back()->air) std::reverse(pass.begin(), pass.end());
       if (approachClear(c, tool, *pass.front()) && approachClear(c, tool, *pass.back())) {
         if (!pass.front()->air) ++op.plunges;
-        op.path.push_back(location(setup_index, tool, MoveKind::Rapid, overClearance(c, *pass.front()),
+        op.path.push_back(cutterLocation(setup_index, tool.id, MoveKind::Rapid, overClearance(c, *pass.front()),
                                    pass.front()->axis));
         for (Voxel* v : pass) {
-          op.path.push_back(location(setup_index, tool, MoveKind::Feed, v->tip, v->axis));
+          op.path.push_back(cutterLocation(setup_index, tool.id, MoveKind::Feed, v->tip, v->axis));
           v->cut = true;
         }
-        op.path.push_back(location(setup_index, tool, MoveKind::Feed, overClearance(c, *pass.back()),
+        op.path.push_back(cutterLocation(setup_index, tool.id, MoveKind::Feed, overClearance(c, *pass.back()),
                                    pass.back()->axis));
         ++op.retracts;
         ++passes;

@@ -90,6 +90,18 @@ CutterLocation parseRow(std::string_view line, const std::string& where) {
   return point;
 }
 
+}  // namespace
+
+CutterLocation cutterLocation(int setup, const std::string& tool, MoveKind move, const Vec3& tip, const Vec3& axis) {
+  CutterLocation c;
+  c.setup = setup;
+  c.tool = tool;
+  c.move = move;
+  c.tip = tip;
+  c.axis = axis;
+  return c;
+}
+
 void appendFixed(std::string& out, double value, int decimals) {
   char buffer[64];
   const auto result = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed, decimals);
@@ -98,6 +110,8 @@ void appendFixed(std::string& out, double value, int decimals) {
   if (text.front() == '-' && text.find_first_not_of("-0.") == std::string_view::npos) text.remove_prefix(1);
   out += text;
 }
+
+namespace {
 
 void appendRow(std::string& out, const CutterLocation& point) {
   out += std::to_string(point.op);
