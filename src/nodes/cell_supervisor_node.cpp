@@ -159,10 +159,14 @@ class CellSupervisorNode {
   }
 
   // Ends the running goal once: the worker's result, or the heartbeat's on a cancel or timeout the stage ignores.
+  // actionlib's goal handles take the action server's lock, and actionlib holds that lock while it calls onGoal and
+  // onCancel (which take mutex_): so the worker and the watch never call a goal handle while they hold mutex_.
   void finish(GoalHandle& gh, const PlanPartResult& r, int status) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (finished_) return;
-    finished_ = true;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (finished_) return;
+      finished_ = true;
+    }
     if (status == actionlib_msgs::GoalStatus::SUCCEEDED) gh.setSucceeded(r, r.reason);
     else if (status == actionlib_msgs::GoalStatus::PREEMPTED) gh.setCanceled(r, r.reason);
     else gh.setAborted(r, r.reason);
@@ -243,19 +247,26 @@ class CellSupervisorNode {
   // The progress sink: records the stage (its start, for the timeout), publishes at most every kFeedbackPeriod, and
   // answers whether to go on.
   bool report(const std::string& stage, double fraction, const std::string& message) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (stage != stage_) {
-      stage_ = stage;
-      stage_start_ = Clock::now();
+    PlanPartFeedback feedback;
+    GoalHandle gh;
+    bool publish = false, go_on = false;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (stage != stage_) {
+        stage_ = stage;
+        stage_start_ = Clock::now();
+      }
+      last_feedback_.stage = stage;
+      last_feedback_.fraction = fraction;
+      last_feedback_.message = message;
+      publish = since(last_published_) >= kFeedbackPeriod && !finished_;
+      if (publish) last_published_ = Clock::now();
+      feedback = last_feedback_;
+      gh = active_;
+      go_on = !cancel_ && timed_out_.empty() && ros::ok();
     }
-    last_feedback_.stage = stage;
-    last_feedback_.fraction = fraction;
-    last_feedback_.message = message;
-    if (since(last_published_) >= kFeedbackPeriod && !finished_) {
-      active_.publishFeedback(last_feedback_);
-      last_published_ = Clock::now();
-    }
-    return !cancel_ && timed_out_.empty() && ros::ok();
+    if (publish) gh.publishFeedback(feedback);
+    return go_on;
   }
 
   double timeoutOf(const std::string& stage) const {
@@ -266,23 +277,31 @@ class CellSupervisorNode {
   // The watch: repeats the last feedback when none went out for kHeartbeat, fails a stage past its timeout, and ends a
   // cancelled goal whose stage has not stopped within kCancelGrace (its result, when it comes, is dropped).
   void beat() {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (!running_ || finished_) return;
-    if (since(last_published_) >= kHeartbeat) {
-      active_.publishFeedback(last_feedback_);
-      last_published_ = Clock::now();
+    GoalHandle gh;
+    PlanPartFeedback feedback;
+    PlanPartResult r;
+    bool publish = false, end = false, aborted = false;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (!running_ || finished_) return;
+      gh = active_;
+      publish = since(last_published_) >= kHeartbeat;
+      if (publish) last_published_ = Clock::now();
+      feedback = last_feedback_;
+      if (timed_out_.empty() && since(stage_start_) > timeoutOf(stage_))
+        timed_out_ = "stage '" + stage_ + "' ran past its timeout of " + std::to_string(timeoutOf(stage_)) + " s";
+      const bool late_cancel = cancel_ && since(cancel_asked_) > kCancelGrace;
+      if (late_cancel || !timed_out_.empty()) {
+        finished_ = end = true;
+        aborted = !timed_out_.empty();
+        r.reason = aborted ? timed_out_ : "cancelled (stage '" + stage_ + "' still stopping)";
+      }
     }
-    if (timed_out_.empty() && since(stage_start_) > timeoutOf(stage_))
-      timed_out_ = "stage '" + stage_ + "' ran past its timeout of " + std::to_string(timeoutOf(stage_)) + " s";
-    const bool late_cancel = cancel_ && since(cancel_asked_) > kCancelGrace;
-    if (late_cancel || !timed_out_.empty()) {
-      finished_ = true;
-      PlanPartResult r;
-      r.reason = timed_out_.empty() ? "cancelled (stage '" + stage_ + "' still stopping)" : timed_out_;
-      if (timed_out_.empty()) active_.setCanceled(r, r.reason);
-      else active_.setAborted(r, r.reason);
-      ROS_WARN("plan_part: %s", r.reason.c_str());
-    }
+    if (publish) gh.publishFeedback(feedback);
+    if (!end) return;
+    if (aborted) gh.setAborted(r, r.reason);
+    else gh.setCanceled(r, r.reason);
+    ROS_WARN("plan_part: %s", r.reason.c_str());
   }
 
   // ---- services ----------------------------------------------------------------------------------------------------
