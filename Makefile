@@ -41,7 +41,7 @@ demo: build
 	$(ROOT)/scripts/rviz_screenshot.sh $(OUT)/rviz_cell.png $(EXAMPLE)
 	@echo "demo: results in $(OUT): part.txt part.json part.png, mesh.stl directions.csv visibility.bits cones.png," \
 	  "plan.txt plan.json setups.png toolpaths.csv tools.json program.ngc (setup_<k>.ngc, tool.tbl, trajectory.csv)" \
-	  "remaining.png, rviz_cell.png (the cell in rviz: part, setup frames, machine)"
+	  "remaining.png, setup_<k>.png, setup_sheet.html, rviz_cell.png (the cell in rviz: part, setup frames, machine)"
 
 # All tests: gtest per stage and rostest integration, through ctest (catkin_make run_tests exits 0 on failures).
 test: build
