@@ -143,3 +143,30 @@ TEST(VisibilityFiles, FollowTheContractToTheLetter) {
     }
   }
 }
+
+// The progress contract (common/progress.h) for both backends: reports of the "visibility" stage with a share that
+// never goes back; asked to stop, the analysis returns flagged cancelled instead of throwing.
+TEST(Progress, ReportsTheShareAndStopsWhenAskedWithoutThrowing) {
+  const Part part = partFromMesh(test::box(Vec3(0, 0, 0), Vec3(30, 20, 10)), "box");
+  for (const VisibilityBackend backend : {VisibilityBackend::Ray, VisibilityBackend::Render}) {
+    VisibilityOptions options;
+    options.level = 2;
+    options.backend = backend;
+    std::vector<ProgressReport> reports;
+    const VisibilityResult whole = analyseVisibility(part, options, [&](const ProgressReport& p) {
+      reports.push_back(p);
+      return true;
+    });
+    EXPECT_FALSE(whole.cancelled);
+    ASSERT_FALSE(reports.empty());
+    for (std::size_t i = 0; i < reports.size(); ++i) {
+      EXPECT_EQ(reports[i].stage, "visibility");
+      if (i > 0) {
+        EXPECT_GE(reports[i].fraction, reports[i - 1].fraction);
+      }
+    }
+    VisibilityResult stopped;
+    EXPECT_NO_THROW(stopped = analyseVisibility(part, options, [](const ProgressReport&) { return false; }));
+    EXPECT_TRUE(stopped.cancelled);
+  }
+}

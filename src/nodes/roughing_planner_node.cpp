@@ -91,12 +91,13 @@ class RoughingPlannerNode {
 
       f.stage = "visibility";
       feedback(f);
-      auto progress = [this, &f](double fraction) {
-        f.fraction = fraction;
+      auto progress = [this, &f](const ProgressReport& p) {
+        f.fraction = p.fraction;
         server_.publishFeedback(f);
         return !server_.isPreemptRequested() && ros::ok();
       };
       const VisibilityResult visibility = analyseVisibility(*part, visibility_options, progress);
+      if (visibility.cancelled) throw Preempted();
 
       f.stage = "setups";
       f.fraction = 0;

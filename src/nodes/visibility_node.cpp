@@ -75,12 +75,13 @@ class VisibilityNode {
       std::string id;
       auto part = parts_.get(goal->part_id, &id);
       feedback.stage = "visibility";
-      auto progress = [this, &feedback](double fraction) {
-        feedback.fraction = fraction;
+      auto progress = [this, &feedback](const ProgressReport& p) {
+        feedback.fraction = p.fraction;
         server_.publishFeedback(feedback);
         return !server_.isPreemptRequested() && ros::ok();
       };
       auto analysis = std::make_shared<VisibilityResult>(analyseVisibility(*part, options, progress));
+      if (analysis->cancelled) throw std::runtime_error("cancelled");  // ends preempted below
       fillResult(*analysis, result);
       result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       result.success = true;

@@ -2,6 +2,8 @@
 // visibility by one backend, side correction, and the figures a user wants to see.
 #pragma once
 
+#include "art2part/common/progress.h"
+
 #include <string>
 
 #include "art2part/geometry/part.h"
@@ -34,11 +36,13 @@ struct VisibilityResult {
   long long side_pairs_added = 0;      // by side correction
   std::vector<int> unseen_triangles;   // visible along no direction at all
   double seconds_directions = 0, seconds_visibility = 0, seconds_side = 0;
+  bool cancelled = false;              // the progress sink asked to stop: the map is incomplete, do not use it
 };
 
-// Throws InputError for bad options (level out of 0..7).
+// Reports ("visibility", the share of the directions done, what it does) to `progress` as the backend goes, and stops
+// when it says so (cancelled set, nothing thrown). Throws InputError for bad options (level out of 0..7).
 VisibilityResult analyseVisibility(const Part& part, const VisibilityOptions& options = {},
-                                   const Progress& progress = {});
+                                   const ProgressSink& progress = {});
 
 // The files of the contract `art2part visibility`: mesh.stl, directions.csv (x,y,z a line), visibility.bits.
 void writeVisibilityFiles(const Part& part, const VisibilityResult& result, const std::string& folder);

@@ -201,14 +201,8 @@ PlanResult planPart(const Part& part, const ToolLibrary& library, const PlanOpti
 
   auto start = Clock::now();
   if (!stage("visibility", 0, "directions and visibility cones")) return r;
-  try {
-    r.visibility = analyseVisibility(part, options.visibility, [&](double f) {
-      return stage("visibility", f, "visibility cones");
-    });
-  } catch (const std::runtime_error&) {
-    if (!r.cancelled) throw;
-    return r;  // the backends stop by throwing when the sink asks them to
-  }
+  r.visibility = analyseVisibility(part, options.visibility, progress);
+  r.cancelled = r.visibility.cancelled;
   timed("visibility", start);
   if (r.cancelled) return r;
 

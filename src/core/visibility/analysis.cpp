@@ -29,7 +29,7 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-VisibilityResult analyseVisibility(const Part& part, const VisibilityOptions& options, const Progress& progress) {
+VisibilityResult analyseVisibility(const Part& part, const VisibilityOptions& options, const ProgressSink& progress) {
   if (options.level < 0 || options.level > 7)
     throw InputError("sphere level " + std::to_string(options.level) + " is out of range 0..7");
   VisibilityResult result;
@@ -43,14 +43,27 @@ VisibilityResult analyseVisibility(const Part& part, const VisibilityOptions& op
   result.seconds_directions = secondsSince(start);
 
   start = std::chrono::steady_clock::now();
-  if (options.backend == VisibilityBackend::Ray) {
-    RayVisibilityOptions ray = options.ray;
-    if (ray.threads == 0) ray.threads = options.threads;
-    result.map = rayVisibility(part.mesh, result.directions.directions, ray, progress);
-  } else {
-    RenderVisibilityOptions render = options.render;
-    if (render.threads == 0) render.threads = options.threads;
-    result.map = renderVisibility(part.mesh, result.directions.directions, render, progress);
+  const std::string what = "visibility cones: " + std::to_string(part.mesh.triangleCount()) + " triangles along " +
+                           std::to_string(result.directions.size()) + " directions";
+  // The backends take a fraction callback and stop by throwing; the stop is turned into `cancelled` here.
+  const Progress backend_progress = [&](double fraction) {
+    if (reportProgress(progress, "visibility", fraction, what)) return true;
+    result.cancelled = true;
+    return false;
+  };
+  try {
+    if (options.backend == VisibilityBackend::Ray) {
+      RayVisibilityOptions ray = options.ray;
+      if (ray.threads == 0) ray.threads = options.threads;
+      result.map = rayVisibility(part.mesh, result.directions.directions, ray, backend_progress);
+    } else {
+      RenderVisibilityOptions render = options.render;
+      if (render.threads == 0) render.threads = options.threads;
+      result.map = renderVisibility(part.mesh, result.directions.directions, render, backend_progress);
+    }
+  } catch (const std::runtime_error&) {
+    if (!result.cancelled) throw;
+    return result;
   }
   result.seconds_visibility = secondsSince(start);
 
