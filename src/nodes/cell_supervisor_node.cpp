@@ -310,8 +310,8 @@ class CellSupervisorNode {
     for (const std::string& name : res.names) {
       std::string part;
       try {
-        const PlanFolder f = readPlanFolder((fs::path(output_root_) / name).string());
-        if (f.plan.contains("part")) part = f.plan["part"].value("source", "");
+        const nlohmann::json plan = readPlanJson((fs::path(output_root_) / name).string());
+        if (plan.is_object() && plan.contains("part")) part = plan["part"].value("source", "");
       } catch (const std::exception&) {
       }
       res.parts.push_back(part);
@@ -325,11 +325,11 @@ class CellSupervisorNode {
     try {
       checkPlanName(req.name);
       const std::string dir = (fs::path(output_root_) / req.name).string();
-      const PlanFolder f = readPlanFolder(dir);
-      if (f.plan.is_null()) throw InputError("plan '" + req.name + "' has no plan.json");
+      const nlohmann::json plan = readPlanJson(dir);
+      if (plan.is_null()) throw InputError("no plan '" + req.name + "' under the output root");
       res.output_dir = dir;
-      res.plan_json = f.plan.dump();
-      res.summary_json = planSummary(f.plan).dump();
+      res.plan_json = plan.dump();
+      res.summary_json = planSummary(plan).dump();
       res.success = true;
     } catch (const std::exception& e) {
       res.success = false;

@@ -2,7 +2,7 @@
 #include "supervisor_requests.h"
 
 #include <algorithm>
-#include <cmath>
+#include <cctype>
 #include <ctime>
 #include <filesystem>
 

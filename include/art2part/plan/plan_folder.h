@@ -74,6 +74,10 @@ struct PlanFolder {
 // the file that is missing or malformed.
 PlanFolder readPlanFolder(const std::string& dir);
 
+// dir/plan.json alone (what a list of plans needs, without the path): null when the folder has none. Throws
+// InputError when it is not JSON.
+nlohmann::json readPlanJson(const std::string& dir);
+
 // The short summary of plan.json a supervisor returns: setups, operations, faces by status, verification, time.
 nlohmann::json planSummary(const nlohmann::json& plan);
 

@@ -127,15 +127,19 @@ PlanFolder readPlanFolder(const std::string& dir) {
   f.toolpath = readToolpathsCsv((folder / "toolpaths.csv").string());
   f.tools = readToolsJson((folder / "tools.json").string());
   if (fs::is_regular_file(folder / "mesh.stl")) f.mesh_path = (folder / "mesh.stl").string();
-  if (fs::is_regular_file(folder / "plan.json")) {
-    std::ifstream in(folder / "plan.json");
-    try {
-      f.plan = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::exception& e) {
-      throw InputError("'" + dir + "/plan.json' is not JSON: " + e.what());
-    }
-  }
+  f.plan = readPlanJson(dir);
   return f;
+}
+
+nlohmann::json readPlanJson(const std::string& dir) {
+  const fs::path path = fs::path(dir) / "plan.json";
+  if (!fs::is_regular_file(path)) return nullptr;
+  std::ifstream in(path);
+  try {
+    return nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError("'" + path.string() + "' is not JSON: " + e.what());
+  }
 }
 
 nlohmann::json planSummary(const nlohmann::json& plan) {
