@@ -66,6 +66,40 @@ struct PlanResult {
 PlanResult planPart(const Part& part, const ToolLibrary& library, const PlanOptions& options = {},
                     const ProgressSink& progress = {});
 
+// planPart's stages one by one, for a caller that runs them apart (the cell's stage nodes, chained by the supervisor
+// through stage records: stage_records.h). planPart is exactly these in this order, so the cell plans what the CLI
+// plans. Each throws what planPart throws for its stage.
+
+// Setups: the minimum cover of the visibility cones, then (options.finish) the setups finishing adds beyond it.
+SetupPlan planPartSetups(const Part& part, const VisibilityResult& visibility, const ToolLibrary& library,
+                         const PlanOptions& options);
+
+// What roughing hands on: the holes a drill or a helix makes (found only when options.finish; roughing leaves them
+// solid) and the roughing of the part with them plugged.
+struct RoughingStage {
+  std::vector<Hole> holes;
+  std::vector<HoleMachining> hole_methods;  // one per hole
+  RoughingPlan roughing;                    // its cancelled flag: the progress sink asked to stop
+  double seconds_holes = 0;                 // of the stage's time, finding the holes and their methods
+};
+RoughingStage planPartRoughing(const Part& part, const SetupPlan& setups, const ToolLibrary& library,
+                               const PlanOptions& options, const ProgressSink& progress = {});
+
+// Finishing of every face, given the stages before it.
+FinishingPlan planPartFinishing(const Part& part, const VisibilityResult& visibility, const SetupPlan& setups,
+                                const RoughingStage& roughing, const ToolLibrary& library, const PlanOptions& options,
+                                const ProgressSink& progress = {});
+
+// Fills the combined plan from its stages: operations setup by setup (roughing, then finishing, linked round the
+// stock where the tool axis turns), the whole toolpath and the tools it uses (plan.json, toolpaths.csv, tools.json).
+// Throws InputError for a tool the library lacks.
+void combinePlan(PlanResult& plan, const Part& part, const ToolLibrary& library, const PlanOptions& options);
+
+// The verification planPart runs on a combined plan: its lattice (planVerifyResolution unless options say) and the
+// faces' allowances (faceAllowances).
+VerifyOptions planVerifyOptions(const Part& part, const PlanResult& plan, const ToolLibrary& library,
+                                const PlanOptions& options);
+
 // The part with the holes a drill or a helix makes filled (holePlugs), for roughing: triangles appended in face -1.
 Part pluggedPart(const Part& part, const std::vector<Hole>& holes, const std::vector<HoleMachining>& methods);
 

@@ -189,6 +189,68 @@ Part pluggedPart(const Part& part, const std::vector<Hole>& holes, const std::ve
   return out;
 }
 
+FinishingOptions stageFinishingOptions(const PlanOptions& options) {
+  FinishingOptions finishing = options.finishing;
+  finishing.mode = options.setups.mode;
+  finishing.allowance = options.roughing.allowance;
+  return finishing;
+}
+
+SetupPlan planPartSetups(const Part& part, const VisibilityResult& visibility, const ToolLibrary& library,
+                         const PlanOptions& options) {
+  SetupPlan setups = planSetups(part, visibility, options.setups);
+  if (!options.finish) return setups;
+  double longest_flutes = 0;
+  for (const Tool& t : library.tools)
+    if (t.type == ToolType::Flat) longest_flutes = std::max(longest_flutes, t.flute_length);
+  for (Setup& s : finishingSetups(part, visibility, setups, longest_flutes, stageFinishingOptions(options),
+                                  options.finishing_setups))
+    setups.setups.push_back(std::move(s));
+  return setups;
+}
+
+RoughingStage planPartRoughing(const Part& part, const SetupPlan& setups, const ToolLibrary& library,
+                               const PlanOptions& options, const ProgressSink& progress) {
+  RoughingStage stage;
+  const auto start = Clock::now();
+  if (options.finish) {
+    const FinishingOptions finishing = stageFinishingOptions(options);
+    stage.holes = findHoles(part, finishing.holes);
+    for (const Hole& h : stage.holes) stage.hole_methods.push_back(chooseHoleMethod(h, library, finishing.holes));
+  }
+  stage.seconds_holes = secondsSince(start);
+  if (!reportProgress(progress, "roughing", 0, "roughing setup 1 of " + std::to_string(setups.setups.size()))) {
+    stage.roughing.cancelled = true;
+    return stage;
+  }
+  stage.roughing = planRoughing(pluggedPart(part, stage.holes, stage.hole_methods), setups, library, options.roughing,
+                                progress);
+  return stage;
+}
+
+FinishingPlan planPartFinishing(const Part& part, const VisibilityResult& visibility, const SetupPlan& setups,
+                                const RoughingStage& roughing, const ToolLibrary& library, const PlanOptions& options,
+                                const ProgressSink& progress) {
+  const FinishingInput input{part, visibility, setups, roughing.roughing, roughing.holes, roughing.hole_methods,
+                             library};
+  return planFinishing(input, stageFinishingOptions(options), progress);
+}
+
+void combinePlan(PlanResult& plan, const Part& part, const ToolLibrary& library, const PlanOptions& options) {
+  plan.operations.clear();
+  plan.toolpath.clear();
+  combine(plan, roughingStock(part, options.roughing), options.roughing.clearance);
+  plan.tools = toolsUsed(plan.toolpath, library);
+}
+
+VerifyOptions planVerifyOptions(const Part& part, const PlanResult& plan, const ToolLibrary& library,
+                                const PlanOptions& options) {
+  VerifyOptions verify = options.verification;
+  if (verify.resolution <= 0) verify.resolution = planVerifyResolution(boundingBox(part.mesh));
+  if (verify.face_allowance.empty()) verify.face_allowance = faceAllowances(part, plan.finishing, library);
+  return verify;
+}
+
 PlanResult planPart(const Part& part, const ToolLibrary& library, const PlanOptions& options,
                     const ProgressSink& progress) {
   PlanResult r;
@@ -208,52 +270,33 @@ PlanResult planPart(const Part& part, const ToolLibrary& library, const PlanOpti
 
   start = Clock::now();
   if (!stage("setups", 0, "minimum cover of the visibility cones")) return r;
-  r.setups = planSetups(part, r.visibility, options.setups);
-  FinishingOptions finishing = options.finishing;
-  finishing.mode = options.setups.mode;
-  finishing.allowance = options.roughing.allowance;
-  if (options.finish) {
-    double longest_flutes = 0;
-    for (const Tool& t : library.tools)
-      if (t.type == ToolType::Flat) longest_flutes = std::max(longest_flutes, t.flute_length);
-    for (Setup& s : finishingSetups(part, r.visibility, r.setups, longest_flutes, finishing, options.finishing_setups))
-      r.setups.setups.push_back(std::move(s));
-  }
+  r.setups = planPartSetups(part, r.visibility, library, options);
   timed("setups", start);
 
   start = Clock::now();
-  if (options.finish) {
-    if (!stage("holes", 0, "holes and the drills that make them")) return r;
-    r.holes = findHoles(part, finishing.holes);
-    for (const Hole& h : r.holes) r.hole_methods.push_back(chooseHoleMethod(h, library, finishing.holes));
-  }
-  timed("holes", start);
-
-  start = Clock::now();
-  if (!stage("roughing", 0, "roughing setup 1 of " + std::to_string(r.setups.setups.size()))) return r;
-  const Part rough_part = pluggedPart(part, r.holes, r.hole_methods);
-  r.roughing = planRoughing(rough_part, r.setups, library, options.roughing, progress);
-  r.cancelled = r.cancelled || r.roughing.cancelled;
-  timed("roughing", start);
+  if (options.finish && !stage("holes", 0, "holes and the drills that make them")) return r;
+  RoughingStage roughing = planPartRoughing(part, r.setups, library, options, progress);
+  r.holes = roughing.holes;
+  r.hole_methods = roughing.hole_methods;
+  r.roughing = roughing.roughing;
+  r.cancelled = r.roughing.cancelled;
+  r.timings.emplace_back("holes", roughing.seconds_holes);
+  r.timings.emplace_back("roughing", secondsSince(start) - roughing.seconds_holes);
   if (r.cancelled) return r;
 
   if (options.finish) {
     start = Clock::now();
-    const FinishingInput input{part, r.visibility, r.setups, r.roughing, r.holes, r.hole_methods, library};
-    r.finishing = planFinishing(input, finishing, progress);
-    r.cancelled = r.cancelled || r.finishing.cancelled;
+    r.finishing = planPartFinishing(part, r.visibility, r.setups, roughing, library, options, progress);
+    r.cancelled = r.finishing.cancelled;
     timed("finishing", start);
   }
 
-  combine(r, roughingStock(part, options.roughing), options.roughing.clearance);
-  r.tools = toolsUsed(r.toolpath, library);
+  combinePlan(r, part, library, options);
   if (options.verify && !r.toolpath.empty() && !r.cancelled) {
     start = Clock::now();
     stage("verification", 0, "simulating " + std::to_string(r.toolpath.size()) + " moves");
-    VerifyOptions verify = options.verification;
-    if (verify.resolution <= 0) verify.resolution = planVerifyResolution(boundingBox(part.mesh));
-    if (verify.face_allowance.empty()) verify.face_allowance = faceAllowances(part, r.finishing, library);
-    r.verification = verifyToolpath(part.mesh, part.triangle_face, r.toolpath, r.tools, verify, &r.simulation);
+    r.verification = verifyToolpath(part.mesh, part.triangle_face, r.toolpath, r.tools,
+                                    planVerifyOptions(part, r, library, options), &r.simulation);
     r.verified = true;
     judgeFaces(r.verification, r.finishing);
     timed("verification", start);

@@ -1,0 +1,122 @@
+// Stage records (stage_records.h): a plan made stage by stage, each stage's result handed on as a record (as the cell's
+// stage nodes and supervisor do), writes the same plan folder as planPart in one process: the same toolpaths.csv byte
+// for byte and the same plan.json but for timings. Bytes that are not the record asked for are refused by name.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "art2part/plan/plan_folder.h"
+#include "art2part/plan/stage_records.h"
+#include "test_meshes.h"
+#include "test_solids.h"
+
+namespace art2part {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kConfig = std::string(ART2PART_SOURCE_DIR) + "/config";
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// plan.json without what depends on the clock: timings and every "...seconds..." figure.
+nlohmann::json withoutClock(nlohmann::json j) {
+  if (j.is_object()) {
+    nlohmann::json out = nlohmann::json::object();
+    for (auto it = j.begin(); it != j.end(); ++it)
+      if (it.key() != "timings" && it.key().find("seconds") == std::string::npos &&
+          it.key().find("per_second") == std::string::npos)
+        out[it.key()] = withoutClock(it.value());
+    return out;
+  }
+  if (j.is_array())
+    for (auto& v : j) v = withoutClock(v);
+  return j;
+}
+
+// A block with a pocket and an 8 mm through hole (a library drill makes it): every record has something to carry.
+Part drilledPocket() {
+  const TopoDS_Shape block = test::pocketedBlock(Vec3(0, 0, 0), Vec3(60, 40, 20), 24, 16, 8, 4);
+  return test::stepPart(test::cut(block, test::solidCylinder(Vec3(50, 20, -1), Vec3(0, 0, 1), 4.0, 22)), "drilled");
+}
+
+TEST(StageRecords, AStageByStagePlanThroughRecordsWritesWhatPlanPartWrites) {
+  const Part original = drilledPocket();
+  const ToolLibrary library = loadToolLibrary(kConfig + "/tools.yaml");
+  PlanOptions options;
+  options.visibility.level = 2;
+  const PlanResult whole = planPart(original, library, options);
+  ASSERT_FALSE(whole.holes.empty());
+  ASSERT_FALSE(whole.finishing.operations.empty());
+  ASSERT_TRUE(whole.verified);
+
+  // The cell's hand-offs: the part from part_server, each stage's result as the next one receives it.
+  const Part part = partFromRecord(partRecord(original));
+  PlanResult staged;
+  staged.visibility = analyseVisibility(part, options.visibility);
+  staged.setups = setupsFromRecord(setupsRecord(planPartSetups(part, staged.visibility, library, options)));
+  const RoughingStage roughing =
+      roughingFromRecord(roughingRecord(planPartRoughing(part, staged.setups, library, options)));
+  staged.holes = roughing.holes;
+  staged.hole_methods = roughing.hole_methods;
+  staged.roughing = roughing.roughing;
+  staged.finishing = finishingFromRecord(finishingRecord(
+      planPartFinishing(part, staged.visibility, staged.setups, roughing, library, options)));
+  combinePlan(staged, part, library, options);
+  const ToolpathAndTools sent = toolpathFromRecord(toolpathRecord(staged.toolpath, staged.tools));
+  const VerifyOptions verify = verifyOptionsFromRecord(verifyOptionsRecord(planVerifyOptions(part, staged, library, options)));
+  staged.verification = verificationFromRecord(verificationRecord(
+      verifyToolpath(part.mesh, part.triangle_face, sent.path, sent.tools, verify, &staged.simulation)));
+  staged.verified = true;
+  judgeFaces(staged.verification, staged.finishing);
+
+  PlanFolderOptions folder;
+  folder.pictures = false;
+  folder.program.write = false;
+  const std::string a = test::tempDir() + "/whole", b = test::tempDir() + "/staged";
+  const WrittenPlan wa = writePlanFolder(a, original, whole, folder);
+  const WrittenPlan wb = writePlanFolder(b, part, staged, folder);
+  EXPECT_EQ(slurp(fs::path(a) / "toolpaths.csv"), slurp(fs::path(b) / "toolpaths.csv"));
+  EXPECT_EQ(slurp(fs::path(a) / "tools.json"), slurp(fs::path(b) / "tools.json"));
+  EXPECT_EQ(slurp(fs::path(a) / "mesh.stl"), slurp(fs::path(b) / "mesh.stl"));
+  EXPECT_EQ(withoutClock(wa.plan).dump(1), withoutClock(wb.plan).dump(1));
+  // What the records carry beyond plan.json: the stock roughing leaves (finishing keeps clear of it).
+  ASSERT_EQ(staged.roughing.stock_left.size(), whole.roughing.stock_left.size());
+  for (std::size_t k = 0; k < whole.roughing.stock_left.size(); ++k) {
+    ASSERT_EQ(staged.roughing.stock_left[k].size(), whole.roughing.stock_left[k].size());
+    for (std::size_t s = 0; s < whole.roughing.stock_left[k].size(); ++s)
+      EXPECT_EQ(staged.roughing.stock_left[k][s].remaining, whole.roughing.stock_left[k][s].remaining);
+  }
+  EXPECT_EQ(verificationRecord(staged.verification), verificationRecord(whole.verification))
+      << "the report of the same path, apart or in one process";
+}
+
+TEST(StageRecords, BytesThatAreNotTheRecordAskedForAreRefusedByName) {
+  SetupPlan plan;
+  plan.setups.resize(2);
+  const RecordBytes setups = setupsRecord(plan);
+  EXPECT_EQ(setupsFromRecord(setups).setups.size(), 2u);
+  auto message = [](auto read) {
+    try {
+      read();
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message([&] { roughingFromRecord(setups); }).find("a roughing record was expected, not a setups record"),
+            std::string::npos);
+  EXPECT_NE(message([] { finishingFromRecord({}); }).find("none given"), std::string::npos);
+  EXPECT_NE(message([] { partFromRecord({0xc1, 0x00, 0x17}); }).find("not MessagePack"), std::string::npos);
+  RecordBytes truncated(setups.begin(), setups.begin() + static_cast<long>(setups.size() / 2));
+  EXPECT_NE(message([&] { setupsFromRecord(truncated); }), "no error");
+}
+
+}  // namespace
+}  // namespace art2part
