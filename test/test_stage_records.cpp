@@ -93,7 +93,11 @@ TEST(StageRecords, AStageByStagePlanThroughRecordsWritesWhatPlanPartWrites) {
     for (std::size_t s = 0; s < whole.roughing.stock_left[k].size(); ++s)
       EXPECT_EQ(staged.roughing.stock_left[k][s].remaining, whole.roughing.stock_left[k][s].remaining);
   }
-  EXPECT_EQ(verificationRecord(staged.verification), verificationRecord(whole.verification))
+  auto unclocked = [](VerificationReport r) {
+    r.seconds_sweep = r.seconds_total = r.moves_per_second = 0;
+    return verificationRecord(r);
+  };
+  EXPECT_EQ(unclocked(staged.verification), unclocked(whole.verification))
       << "the report of the same path, apart or in one process";
 }
 
