@@ -1,7 +1,8 @@
 // cell_supervisor: the cell's single call. One plan_part goal turns a part into a plan folder and a program.
 //   action:   plan_part (PlanPart): goals queue (at most ~max_queue waiting; more are rejected with the reason); the
-//             running goal runs the pipeline (planPart: visibility, setups, holes, roughing, finishing, verification),
-//             then writes the plan folder (writePlanFolder: plan.json, toolpaths.csv, tools.json, mesh.stl, pictures,
+//             running goal has part_server load the part, then runs the pipeline through the stage nodes
+//             (stage_chain.h: analyse_visibility, plan_setups, plan_roughing, plan_finishing, verify_toolpaths, each
+//             taking the previous stage's result; planPart's plan), then writes the plan folder (writePlanFolder: plan.json, toolpaths.csv, tools.json, mesh.stl, pictures,
 //             program.ngc for the machine) under ~output_root. Feedback at every stage report and at least once a
 //             second (a heartbeat repeats the last one); a cancel ends the goal PREEMPTED within a second; a stage
 //             running longer than its timeout (~stage_timeouts) ends it ABORTED naming the stage.
@@ -10,11 +11,13 @@
 //             first, plans are written under the second), ~tools, ~machines_dir, ~machine_3axis, ~machine_5axis,
 //             ~max_queue, ~stage_timeouts (dict, s), ~default_timeout (s).
 //   topics:   /diagnostics (NodeDiagnostics: busy or idle, goals served, refused, failed, cancelled).
-// A bad goal is aborted with a one-line reason; the node serves the next one.
+// A bad goal is aborted with a one-line reason; a stage node that is missing, dies or fails aborts the goal naming the
+// stage ("stage 'roughing': its node went away ..."); the node serves the next one.
 #include <actionlib/server/action_server.h>
 #include <ros/ros.h>
 
 #include <art2part/GetPlan.h>
+#include <art2part/LoadPart.h>
 #include <art2part/ListPlans.h>
 
 #include <atomic>
@@ -31,6 +34,7 @@
 #include "cell_folders.h"
 #include "node_diagnostics.h"
 #include "part_client.h"
+#include "stage_chain.h"
 #include "supervisor_requests.h"
 
 #ifndef ART2PART_CONFIG_DIR
@@ -50,6 +54,7 @@ constexpr double kFeedbackPeriod = 0.25;  // s: stage reports closer than this a
 constexpr double kHeartbeat = 0.5;        // s: the last feedback is repeated when none went out for this long
 constexpr double kWatch = 0.1;            // s: how often the watch looks at the running goal
 constexpr double kCancelGrace = 0.8;      // s: a cancelled stage that has not stopped by then is left to finish alone
+constexpr double kServerWait = 20;        // s: how long a stage's node may take to be offered (a respawned one starting)
 
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
@@ -180,27 +185,25 @@ class CellSupervisorNode {
     try {
       const PlanOptions options = planOptionsFrom(goal);
       const Machine machine = loadMachine(machineFileFor(goal, config_));
-      report("loading", 0, goal.part_file.empty() ? "part '" + goal.part_id + "' from part_server" : goal.part_file);
-      std::shared_ptr<const Part> part;
-      if (!goal.part_file.empty()) {
-        LoadOptions load;
-        load.unit = parseLengthUnit(goal.units.empty() ? "auto" : goal.units);
-        part = std::make_shared<const Part>(loadPart(confinedField(folders_.parts, "part_file", goal.part_file), load));
-      } else {
-        part = parts_.get(goal.part_id);
-      }
       const ToolLibrary library = loadToolLibrary(config_.tools);
-      const PlanResult plan = planPart(*part, library, options, [this](const ProgressReport& p) {
-        return report(p.stage, p.fraction, p.message);
-      });
-      if (plan.cancelled) {
-        request.finish(RequestOutcome::Cancelled, "cancelled");
-        return endStopped(gh);
+      report("loading", 0, goal.part_file.empty() ? "part '" + goal.part_id + "' from part_server" : goal.part_file);
+      const std::string part_id = goal.part_file.empty() ? goal.part_id : loadIntoPartServer(goal);
+      const std::shared_ptr<const Part> part = parts_.get(part_id);
+      const std::string dir = (fs::path(output_root_) / newPlanFolderName(output_root_, part->source)).string();
+      fs::create_directories(dir);  // remaining.png is drawn there by the verification node
+      PlanResult plan;
+      try {
+        plan = chain_.run(goal, part_id, *part, library, options, (fs::path(dir) / "remaining.png").string(),
+                          [this](const ProgressReport& p) { report(p.stage, p.fraction, p.message); },
+                          [this] { return !stopRequested(); });
+      } catch (...) {
+        std::error_code error;
+        fs::remove_all(dir, error);  // no half plan under the output root
+        throw;
       }
       report("writing", 0, "the plan folder and the program");
-      const std::string name = newPlanFolderName(output_root_, part->source);
-      const std::string dir = (fs::path(output_root_) / name).string();
       PlanFolderOptions folder;
+      folder.remaining_picture = false;  // the verification node's
       folder.program.machine = machine;
       folder.program.clampings = setupClampings(machine, *part, plan.setups, options.roughing);
       const WrittenPlan written = writePlanFolder(dir, *part, plan, folder);
@@ -215,7 +218,10 @@ class CellSupervisorNode {
       ROS_INFO("plan_part: %s -> %s", part->source.c_str(), dir.c_str());
       finish(gh, result, actionlib_msgs::GoalStatus::SUCCEEDED);
       request.finish(RequestOutcome::Served, "wrote " + dir);
-    } catch (const std::exception& e) {  // InputError (a bad goal, a part that will not load) and anything else
+    } catch (const StageStopped&) {
+      request.finish(RequestOutcome::Cancelled, "cancelled");
+      return endStopped(gh);
+    } catch (const std::exception& e) {  // InputError (a bad goal, a part that will not load), StageFailure, the rest
       if (stopRequested()) {
         request.finish(RequestOutcome::Cancelled, "cancelled");
         return endStopped(gh);
@@ -226,6 +232,19 @@ class CellSupervisorNode {
       request.finish(outcomeOf(e), result.reason);
       finish(gh, result, actionlib_msgs::GoalStatus::ABORTED);
     }
+  }
+
+  // part_server loads the goal's file (confined to the part folders here first, with the same refusal as every node):
+  // the stage nodes plan on the part it serves. Its id.
+  std::string loadIntoPartServer(const PlanPartGoal& goal) {
+    LoadPart load;
+    load.request.path = confinedField(folders_.parts, "part_file", goal.part_file);
+    load.request.units = goal.units;
+    if (!ros::service::waitForService("load_part", ros::Duration(kServerWait)))
+      throw StageFailure("loading", "no node offers load_part (part_server)");
+    if (!ros::service::call("load_part", load)) throw StageFailure("loading", "the call to load_part failed");
+    if (!load.response.success) throw InputError(load.response.message);
+    return load.response.part_id;
   }
 
   bool stopRequested() {
@@ -346,6 +365,7 @@ class CellSupervisorNode {
   ros::ServiceServer list_srv_, get_srv_;
   ros::WallTimer heartbeat_;
   PartClient parts_;  // only the worker uses it
+  StageChain chain_;  // only the worker uses it
 
   std::mutex mutex_;  // guards everything below
   std::condition_variable wake_;

@@ -1,6 +1,8 @@
 // finishing_planner: face-based finishing of a part loaded in part_server (thesis 4.2-4.3); with the same options the
 // same finishing as `art2part plan` (planPart: visibility, setups and any added for finishing, holes, roughing, then
-// finishing; no verification: that is verify_toolpaths' job).
+// finishing; no verification: that is verify_toolpaths' job), or, when the goal hands on the stages before it
+// (visibility, setups_record, roughing_record: the cell supervisor's chain), finishing alone on them; the result's
+// record holds the whole finishing plan (stage_records.h).
 //   action:   plan_finishing (PlanFinishing): feedback at every stage and group of faces (stage, fraction, message);
 //             the result holds the finishing operations (MachiningOperation), every face's FaceFinishing, the
 //             finishing toolpath (tips in metres, axes, moves); toolpaths.csv and tools.json of the finishing are
@@ -13,6 +15,8 @@
 //   topics:   /diagnostics (node_diagnostics.h)
 // A bad goal (unknown part, bad mode, level or length, an output_dir outside the output root or unwritable) is
 // aborted with a one-line reason in result.message; the node stays up. A cancel stops the plan at the next stage or group of faces; it ends preempted.
+#include "setup_markers.h"  // visibilityFromMessage
+
 #include <actionlib/server/simple_action_server.h>
 #include <ros/ros.h>
 
@@ -20,6 +24,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "art2part/plan/stage_records.h"
 #include "cell_folders.h"
 #include "art2part/plan/plan_folder.h"
 #include "finishing_markers.h"
@@ -62,14 +67,16 @@ class FinishingPlannerNode {
       server_.publishFeedback(f);
       std::string id;
       const std::shared_ptr<const Part> part = parts_.get(goal->part_id, &id);
-      const PlanResult plan = planPart(*part, library, options, [this](const ProgressReport& p) {
+      const ProgressSink progress = [this](const ProgressReport& p) {
         PlanFinishingFeedback feedback;
         feedback.stage = p.stage;
         feedback.fraction = p.fraction;
         feedback.message = p.message;
         server_.publishFeedback(feedback);
         return !server_.isPreemptRequested() && ros::ok();
-      });
+      };
+      const PlanResult plan = handsOn(*goal) ? finishHandedOn(*goal, *part, library, options, progress)
+                                             : planPart(*part, library, options, progress);
       if (plan.cancelled) {
         result.success = false;
         result.message = "preempted";
@@ -79,6 +86,7 @@ class FinishingPlannerNode {
         return;
       }
       fillFinishingResult(*part, plan, result);
+      result.record = finishingRecord(plan.finishing);
       if (!output_dir.empty()) writeFiles(plan, output_dir);
       result.mode = machineModeName(plan.setups.mode);
       result.success = true;
@@ -102,6 +110,35 @@ class FinishingPlannerNode {
       else server_.setAborted(result, result.message);
       request.finish(preempted ? RequestOutcome::Cancelled : outcomeOf(e), result.message);
     }
+  }
+
+  // The goal carries the stages before finishing (the supervisor's hand-off): all four fields, or none.
+  static bool handsOn(const PlanFinishingGoal& goal) {
+    const int given = !goal.directions.empty() + !goal.bits.empty() + !goal.setups_record.empty() +
+                      !goal.roughing_record.empty();
+    if (given != 0 && given != 4)
+      throw InputError("directions, bits, setups_record and roughing_record come together: " + std::to_string(given) +
+                       " of 4 given");
+    return given == 4;
+  }
+
+  // Finishing on the stages handed on, then combined with roughing as planPart combines them (the markers and the
+  // files show the finishing operations of the whole plan).
+  static PlanResult finishHandedOn(const PlanFinishingGoal& goal, const Part& part, const ToolLibrary& library,
+                                   const PlanOptions& options, const ProgressSink& progress) {
+    PlanResult plan;
+    plan.visibility = visibilityFromMessage(part, goal.directions, goal.bits, goal.special);
+    plan.setups = setupsFromRecord(goal.setups_record);
+    const RoughingStage roughing = roughingFromRecord(goal.roughing_record);
+    if (plan.visibility.map.triangles() != part.mesh.triangleCount())
+      throw InputError("the visibility handed on is of another part");
+    plan.holes = roughing.holes;
+    plan.hole_methods = roughing.hole_methods;
+    plan.roughing = roughing.roughing;
+    plan.finishing = planPartFinishing(part, plan.visibility, plan.setups, roughing, library, options, progress);
+    plan.cancelled = plan.finishing.cancelled;
+    if (!plan.cancelled) combinePlan(plan, part, library, options);
+    return plan;
   }
 
   static void writeFiles(const PlanResult& plan, const std::string& folder) {

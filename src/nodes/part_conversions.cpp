@@ -1,5 +1,7 @@
 #include "part_conversions.h"
 
+#include "art2part/plan/stage_records.h"
+
 #include "marker_helpers.h"  // toVectorMsg
 
 namespace art2part {
@@ -85,10 +87,12 @@ LoadedPart toMsg(const Part& part, const std::string& id) {
   m.triangle_face.assign(part.triangle_face.begin(), part.triangle_face.end());
   for (const Face& f : part.faces) m.faces.push_back(toFaceMsg(f));
   m.summary = toSummaryMsg(part);
+  m.record = partRecord(part);
   return m;
 }
 
 Part fromMsg(const LoadedPart& msg) {
+  if (!msg.record.empty()) return partFromRecord(msg.record);  // exact: what the file gave (mm)
   Mesh mesh;
   for (const auto& p : msg.mesh.vertices) mesh.vertices.emplace_back(p.x / kMetresPerMm, p.y / kMetresPerMm, p.z / kMetresPerMm);
   for (const auto& t : msg.mesh.triangles)

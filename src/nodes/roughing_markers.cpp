@@ -65,6 +65,7 @@ RoughingOptions roughingOptionsFrom(const PlanRoughingGoal& goal, const ToolLibr
   options.allowance = lengthMm(goal.allowance_m, request_limits::kAllowance, options.allowance);
   options.stepdown = lengthMm(goal.stepdown_m, request_limits::kStepdown, 0.0);
   options.rest_pass = goal.rest_pass;
+  options.five_axis = goal.five_axis;
   if (!goal.tool.empty()) {
     const Tool* tool = library.find(goal.tool);
     if (!tool) throw InputError("no tool '" + goal.tool + "' in " + library_path);

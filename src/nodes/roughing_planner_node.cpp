@@ -1,6 +1,7 @@
 // roughing_planner: global roughing of a part loaded in part_server (thesis 4.1, 5.1-5.2); with the same options the
 // same plan as `art2part plan`'s roughing stage (planRoughing one setup at a time).
-//   action:   plan_roughing (PlanRoughing): visibility and setups here, then one setup at a time: the main flat or bull
+//   action:   plan_roughing (PlanRoughing): visibility and setups here (or the goal's setups_record, plan_setups'
+//             hand-off; with plug_holes the holes a drill makes stay solid, as `art2part plan` roughs), then one setup at a time: the main flat or bull
 //             mill (chosen per setup, or the goal's), then optionally the rest tool; feedback between stages and
 //             setups (setup k of n, the last operation, levels done); the result holds per operation a
 //             MachiningOperation and the whole toolpath (tips in metres, moves); toolpaths.csv and tools.json are
@@ -24,6 +25,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "art2part/plan/stage_records.h"
 #include "cell_folders.h"
 #include "node_diagnostics.h"
 #include "part_client.h"
@@ -89,25 +91,18 @@ class RoughingPlannerNode {
       std::string id;
       const std::shared_ptr<const Part> part = parts_.get(goal->part_id, &id);
 
-      f.stage = "visibility";
-      feedback(f);
-      auto progress = [this, &f](const ProgressReport& p) {
-        f.fraction = p.fraction;
-        server_.publishFeedback(f);
-        return !server_.isPreemptRequested() && ros::ok();
-      };
-      const VisibilityResult visibility = analyseVisibility(*part, visibility_options, progress);
-      if (visibility.cancelled) throw Preempted();
-
-      f.stage = "setups";
-      f.fraction = 0;
-      feedback(f);
-      const SetupPlan setups = planSetups(*part, visibility, setup_options);
-
-      const RoughingPlan plan = roughEachSetup(*part, setups, library, options, f);
+      const SetupPlan setups = goal->setups_record.empty()
+                                   ? planSetupsHere(*part, visibility_options, setup_options, f)
+                                   : setupsFromRecord(goal->setups_record);  // the supervisor's hand-off
+      PlanOptions stage_options;  // what planPart's roughing stage does with these options
+      stage_options.roughing = options;
+      stage_options.finish = goal->plug_holes;
+      const RoughingStage stage = roughEachSetup(*part, setups, library, stage_options, f);
+      const RoughingPlan& plan = stage.roughing;
       if (!output_dir.empty()) writeRoughingFiles(plan, library, output_dir);
 
       fillResult(plan, result);
+      result.record = roughingRecord(stage);
       result.mode = machineModeName(setups.mode);
       result.setup_count = static_cast<uint32_t>(setups.setups.size());
       result.success = true;
@@ -131,14 +126,34 @@ class RoughingPlannerNode {
     }
   }
 
-  // planRoughing over every setup (the core's tool choice, rest passes and stock between setups, unchanged), with
-  // feedback after every level; a cancel stops it within a level.
-  RoughingPlan roughEachSetup(const Part& part, const SetupPlan& setups, const ToolLibrary& library,
-                              const RoughingOptions& options, PlanRoughingFeedback& f) {
+  // Visibility and setups as plan_setups plans them, when the goal brings none.
+  SetupPlan planSetupsHere(const Part& part, const VisibilityOptions& visibility_options,
+                           const SetupOptions& setup_options, PlanRoughingFeedback& f) {
+    f.stage = "visibility";
+    feedback(f);
+    auto progress = [this, &f](const ProgressReport& p) {
+      f.fraction = p.fraction;
+      server_.publishFeedback(f);
+      return !server_.isPreemptRequested() && ros::ok();
+    };
+    const VisibilityResult visibility = analyseVisibility(part, visibility_options, progress);
+    if (visibility.cancelled) throw Preempted();
+    f.stage = "setups";
+    f.fraction = 0;
+    feedback(f);
+    return planSetups(part, visibility, setup_options);
+  }
+
+  // planPart's roughing stage (holes kept solid when asked, then the core's tool choice, rest passes and stock
+  // between setups, unchanged), with feedback after every level; a cancel stops it within a level.
+  RoughingStage roughEachSetup(const Part& part, const SetupPlan& setups, const ToolLibrary& library,
+                               const PlanOptions& options, PlanRoughingFeedback& f) {
     const int n = static_cast<int>(setups.setups.size());
-    f.stage = "roughing";
+    f.stage = options.finish ? "holes" : "roughing";
     f.setups = static_cast<uint32_t>(n);
-    RoughingPlan plan = planRoughing(part, setups, library, options, [&](const ProgressReport& p) {
+    feedback(f);
+    RoughingStage stage = planPartRoughing(part, setups, library, options, [&](const ProgressReport& p) {
+      f.stage = "roughing";
       f.setup = static_cast<uint32_t>(std::min(n, static_cast<int>(p.fraction * n) + 1));
       f.fraction = p.fraction;
       f.levels_done = static_cast<uint32_t>(p.done);
@@ -146,12 +161,12 @@ class RoughingPlannerNode {
       server_.publishFeedback(f);
       return !server_.isPreemptRequested() && ros::ok();
     });
-    if (plan.cancelled) throw Preempted();
+    if (stage.roughing.cancelled) throw Preempted();
     f.stage = "done";
     f.fraction = 1;
-    f.operations = static_cast<uint32_t>(plan.operations.size());
+    f.operations = static_cast<uint32_t>(stage.roughing.operations.size());
     server_.publishFeedback(f);
-    return plan;
+    return stage;
   }
 
   static std::string summary(const std::string& id, const SetupPlan& setups, const RoughingPlan& plan,

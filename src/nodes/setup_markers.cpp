@@ -96,39 +96,44 @@ bool carriesVisibility(const PlanSetupsRequest& request) {
 }
 
 VisibilityResult visibilityFromRequest(const Part& part, const PlanSetupsRequest& request) {
+  return visibilityFromMessage(part, request.directions, request.bits, request.special);
+}
+
+VisibilityResult visibilityFromMessage(const Part& part, const std::vector<geometry_msgs::Vector3>& given_directions,
+                                       const std::vector<uint8_t>& bits, const std::vector<uint8_t>& special_flags) {
   static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "bits are copied into 64-bit words byte by byte");
-  const int D = static_cast<int>(request.directions.size());
+  const int D = static_cast<int>(given_directions.size());
   const int T = part.mesh.triangleCount();
   if (D == 0) throw InputError("bits or special flags given without directions");
 
   std::vector<Vec3> directions(D);
   for (int d = 0; d < D; ++d) {
-    const auto& v = request.directions[d];
+    const auto& v = given_directions[d];
     const Vec3 u(v.x, v.y, v.z);
     if (!u.allFinite() || std::abs(u.norm() - 1.0) > kUnitTolerance)
       throw InputError("direction " + std::to_string(d) + " (" + fmt(v.x) + ", " + fmt(v.y) + ", " + fmt(v.z) +
                        ") is not a unit vector");
-    directions[d] = u.normalized();
+    directions[d] = std::abs(u.squaredNorm() - 1.0) < 1e-15 ? u : u.normalized();  // the analysis' own, unchanged
   }
 
   const std::size_t bytes = (static_cast<std::size_t>(D) + 7) / 8;
-  if (request.bits.size() != static_cast<std::size_t>(T) * bytes)
-    throw InputError("bits: " + std::to_string(request.bits.size()) + " bytes, but the part's " + std::to_string(T) +
+  if (bits.size() != static_cast<std::size_t>(T) * bytes)
+    throw InputError("bits: " + std::to_string(bits.size()) + " bytes, but the part's " + std::to_string(T) +
                      " triangles x ceil(" + std::to_string(D) + " directions / 8) need " +
                      std::to_string(static_cast<std::size_t>(T) * bytes) +
                      " (a visibility result of another part or level?)");
-  if (!request.special.empty() && request.special.size() != static_cast<std::size_t>(D))
-    throw InputError("special: " + std::to_string(request.special.size()) + " flags for " + std::to_string(D) +
+  if (!special_flags.empty() && special_flags.size() != static_cast<std::size_t>(D))
+    throw InputError("special: " + std::to_string(special_flags.size()) + " flags for " + std::to_string(D) +
                      " directions");
 
   VisibilityResult result;
   result.directions = sphereFor(directions);
   result.directions.directions = directions;
-  if (request.special.empty()) {
+  if (special_flags.empty()) {
     result.directions.special = matchSpecial(part, directions);
   } else {
     result.directions.special.resize(D);
-    for (int d = 0; d < D; ++d) result.directions.special[d] = request.special[d] ? 1 : 0;
+    for (int d = 0; d < D; ++d) result.directions.special[d] = special_flags[d] ? 1 : 0;
   }
   for (char s : result.directions.special) result.special_directions += s;
 
@@ -137,7 +142,7 @@ VisibilityResult visibilityFromRequest(const Part& part, const PlanSetupsRequest
   const std::uint64_t last_word_mask = D % 64 == 0 ? ~std::uint64_t(0) : (std::uint64_t(1) << (D % 64)) - 1;
   for (int t = 0; t < T; ++t) {
     std::uint64_t* row = result.map.bits.row(t);
-    std::memcpy(row, &request.bits[static_cast<std::size_t>(t) * bytes], bytes);
+    std::memcpy(row, &bits[static_cast<std::size_t>(t) * bytes], bytes);
     row[words - 1] &= last_word_mask;  // padding bits of the last byte are not directions
   }
   result.unseen_triangles = invisibleTriangles(result.map);
@@ -173,6 +178,8 @@ MachiningSetup toMachiningSetup(const Setup& setup, int k, const DirectionSet& d
   out.triangles = converted<int32_t>(setup.triangles);
   out.reachable_triangles = setup.reachable_triangles;
   out.square_face_area = setup.square_face_area;
+  out.for_finishing = setup.for_finishing;
+  out.finishing_faces = converted<int32_t>(setup.finishing_faces);
   return out;
 }
 

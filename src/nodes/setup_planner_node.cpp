@@ -1,6 +1,9 @@
 // setup_planner: the fewest setups that machine a part loaded in part_server (thesis 3.3).
 //   service:  plan_setups (PlanSetups): analyses visibility here with the request's options, or plans on the
-//             directions + bits of an analyse_visibility result passed in the request
+//             directions + bits of an analyse_visibility result passed in the request; with finishing_setups,
+//             also the setups finishing adds (planPartSetups, as `art2part plan`); the response's record holds the
+//             whole plan for plan_roughing and plan_finishing (stage_records.h)
+//   params:   ~frame_id, ~unused_frame_id, ~tools (the tool library for finishing_setups; default config/tools.yaml)
 //   tf2:      static transforms part -> setup_<k>, one per setup of the last plan. A static transform cannot be
 //             withdrawn: when a plan has fewer setups than one before it, the leftover setup_<k> are re-sent under
 //             the parameter ~unused_frame_id (default "unused_setups", a frame with no parent), so looking them up
@@ -19,9 +22,14 @@
 #include <chrono>
 #include <mutex>
 
+#include "art2part/plan/stage_records.h"
 #include "node_diagnostics.h"
 #include "part_client.h"
 #include "marker_helpers.h"
+
+#ifndef ART2PART_CONFIG_DIR
+#error "ART2PART_CONFIG_DIR (the package's config folder) must be defined by the build"
+#endif
 
 namespace art2part {
 
@@ -30,6 +38,8 @@ class SetupPlannerNode {
   SetupPlannerNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
     pnh.param<std::string>("frame_id", frame_id_, "part");
     pnh.param<std::string>("unused_frame_id", unused_frame_id_, "unused_setups");
+    pnh.param<std::string>("tools", tools_path_, std::string(ART2PART_CONFIG_DIR) + "/tools.yaml");
+    diagnostics_.setConfiguration("tools", tools_path_);
     markers_pub_ = nh.advertise<visualization_msgs::MarkerArray>("setup_markers", 1, true);
     service_ = nh.advertiseService("plan_setups", &SetupPlannerNode::plan, this);
   }
@@ -51,8 +61,14 @@ class SetupPlannerNode {
       }
       const VisibilityResult visibility =
           given ? visibilityFromRequest(*part, req) : analyseVisibility(*part, visibility_options);
-      const SetupPlan plan = planSetups(*part, visibility, options);
+      PlanOptions plan_options;  // the setups of `art2part plan`: the cover, and those finishing adds when asked
+      plan_options.setups = options;
+      plan_options.finish = req.finishing_setups;
+      const SetupPlan plan = req.finishing_setups
+                                 ? planPartSetups(*part, visibility, loadToolLibrary(tools_path_), plan_options)
+                                 : planSetups(*part, visibility, options);
       fillResponse(plan, visibility.directions, res);
+      res.record = setupsRecord(plan);
       res.success = true;
       res.message = "part '" + id + "': " + std::to_string(plan.setups.size()) +
                     (plan.setups.size() == 1 ? " setup (" : " setups (") + res.mode +
@@ -85,7 +101,7 @@ class SetupPlannerNode {
   }
 
   NodeDiagnostics diagnostics_;
-  std::string frame_id_, unused_frame_id_;
+  std::string frame_id_, unused_frame_id_, tools_path_;
   ros::Publisher markers_pub_;
   ros::ServiceServer service_;
   tf2_ros::StaticTransformBroadcaster tf_;

@@ -3,6 +3,7 @@
 #include "marker_helpers.h"
 
 #include "art2part/plan/plan_folder.h"
+#include "art2part/plan/stage_records.h"
 
 #include <algorithm>
 #include <cmath>
@@ -63,6 +64,15 @@ void verifyFolder(const VerifyToolpathsRequest& request, FolderVerification& out
   out.report = verifyToolpath(out.part.mesh, out.part.triangle_face, folder.toolpath, folder.tools, options, &out.state);
 }
 
+void verifyHandedOn(const VerifyToolpathsRequest& request, const Part& part, FolderVerification& out) {
+  const VerifyOptions options =
+      request.options_record.empty() ? verifyOptionsFrom(request) : verifyOptionsFromRecord(request.options_record);
+  const ToolpathAndTools plan = toolpathFromRecord(request.toolpath_record);
+  if (plan.path.empty()) throw InputError("toolpath_record holds no toolpath");
+  out.part = part;
+  out.report = verifyToolpath(out.part.mesh, out.part.triangle_face, plan.path, plan.tools, options, &out.state);
+}
+
 // ---- the response ------------------------------------------------------------------------------------------------
 
 void fillResponse(const VerificationReport& report, VerifyToolpathsResponse& response) {
@@ -74,6 +84,7 @@ void fillResponse(const VerificationReport& report, VerifyToolpathsResponse& res
   response.leftover_max_mm = report.leftover_max_mm;
   response.moves = report.moves;
   response.report_json = reportJson(report);
+  response.record = verificationRecord(report);
 }
 
 std::string summaryOf(const VerificationReport& report) {

@@ -35,6 +35,10 @@ struct FolderVerification {
 // loaded.
 void verifyFolder(const VerifyToolpathsRequest& request, FolderVerification& out);
 
+// The same for a request that hands the plan on (toolpath_record, options_record) on `part`, the part_server's.
+// Throws InputError for a record that is not one, or an empty path.
+void verifyHandedOn(const VerifyToolpathsRequest& request, const Part& part, FolderVerification& out);
+
 // ---- the response ------------------------------------------------------------------------------------------------
 
 // passed, the counts and figures and report_json (not success, message or seconds).

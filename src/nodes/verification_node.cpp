@@ -1,6 +1,8 @@
 // verification_node: checks any plan folder (toolpaths.csv + tools.json, ours or a third party's) against its part by
 // simulating the stock (issue 5), for the supervisor and for a cell operator. The same steps as `art2part verify`.
-//   service:  verify_toolpaths (VerifyToolpaths): gouges, collisions, leftover and the whole JSON report
+//   service:  verify_toolpaths (VerifyToolpaths): gouges, collisions, leftover and the whole JSON report, of a plan
+//             folder, or of a plan handed on as records on a part in part_server (the cell supervisor's chain: the
+//             path and the plan's verify options; picture_file gets remaining.png), the report also as a record
 //   topics:   verification_markers (MarkerArray, latched): DELETEALL, the remaining stock coloured by deviation,
 //             gouges (red) and collisions (orange) as spheres, in ~frame_id (default "part"), metres
 //             (markers: namespace under "<part_id>/" (the part file's or the folder's name), a DELETEALL first)
@@ -18,7 +20,9 @@
 #include <chrono>
 #include <mutex>
 
+#include "art2part/plan/plan_pictures.h"
 #include "cell_folders.h"
+#include "part_client.h"
 #include "node_diagnostics.h"
 #include "verification_markers.h"
 #include "marker_helpers.h"
@@ -45,11 +49,20 @@ class VerificationNode {
     NodeDiagnostics::Request request = diagnostics_.request("verify_toolpaths");
     try {
       FolderVerification v;
-      verifyFolder(confined(req), v);
+      std::string part_id;  // the markers' namespace
+      if (req.toolpath_record.empty()) {
+        verifyFolder(confined(req), v);
+        res.message = "'" + req.folder + "' on '" + partFileOf(req) + "': " + summaryOf(v.report);
+        part_id = partIdOfFile(req.part_file.empty() ? req.folder : req.part_file);
+      } else {
+        const std::string picture = req.picture_file.empty() ? "" : confinedField(folders_.plans, "picture_file", req.picture_file);
+        verifyHandedOn(req, *part(req.part_id, part_id), v);
+        if (!picture.empty()) writeRemainingPicture(v.part, v.report, v.state, picture);
+        res.message = "the plan handed on for '" + part_id + "': " + summaryOf(v.report);
+      }
       fillResponse(v.report, res);
       res.success = true;
-      res.message = "'" + req.folder + "' on '" + partFileOf(req) + "': " + summaryOf(v.report);
-      publish(ticket, partIdOfFile(req.part_file.empty() ? req.folder : req.part_file), v);  // markers' namespace
+      publish(ticket, part_id, v);
       ROS_INFO("verify_toolpaths: %s", res.message.c_str());
       request.finish(RequestOutcome::Served, res.message);
     } catch (const std::exception& e) {  // InputError (a bad request) and anything else: an answer, not a crash
@@ -61,6 +74,12 @@ class VerificationNode {
     }
     res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return true;
+  }
+
+  // The part loaded in part_server (PartClient's cache is not thread-safe; requests run in parallel).
+  std::shared_ptr<const Part> part(const std::string& requested, std::string& id) {
+    std::lock_guard<std::mutex> lock(parts_mutex_);
+    return parts_.get(requested, &id);
   }
 
   // The request with its folder and part file resolved inside the configured folders (refused otherwise).
@@ -88,7 +107,8 @@ class VerificationNode {
   int marker_cells_ = 150;
   ros::Publisher markers_pub_;
   ros::ServiceServer service_;
-  std::mutex publish_mutex_;
+  std::mutex publish_mutex_, parts_mutex_;
+  PartClient parts_;
   std::atomic<long> requests_{0}, shown_ticket_{0};
 };
 

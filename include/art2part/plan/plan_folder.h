@@ -39,6 +39,7 @@ struct PlanProgramOptions {
 
 struct PlanFolderOptions {
   bool pictures = true;     // setups.png and, when the plan was verified, remaining.png (OSMesa renders)
+  bool remaining_picture = true;  // false: remaining.png comes from where the simulation ran (the verification node)
   bool visibility_files = true;  // directions.csv and visibility.bits
   PlanProgramOptions program;
 };

@@ -14,5 +14,8 @@ void writeSetupPicture(const Part& part, const SetupPlan& plan, const std::strin
 // remaining.png: the stock the plan's simulation leaves, coloured by its thickness over the part (needs
 // plan.verified). Throws InputError when the file cannot be written.
 void writeRemainingPicture(const Part& part, const PlanResult& plan, const std::string& path);
+// The same from a simulation's report and state (the verification node's, where the simulation ran).
+void writeRemainingPicture(const Part& part, const VerificationReport& report, const VerificationState& simulation,
+                           const std::string& path);
 
 }  // namespace art2part

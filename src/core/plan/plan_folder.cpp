@@ -75,7 +75,7 @@ WrittenPlan writePlanFolder(const std::string& dir, const Part& part, const Plan
   if (options.pictures) {
     writeSetupPicture(part, plan.setups, (folder / "setups.png").string());
     writeSetupPictures(dir, part, plan.setups);
-    if (plan.verified) writeRemainingPicture(part, plan, (folder / "remaining.png").string());
+    if (plan.verified && options.remaining_picture) writeRemainingPicture(part, plan, (folder / "remaining.png").string());
   }
   written.write_seconds = secondsSince(start);
 

@@ -53,9 +53,13 @@ void writeSetupPicture(const Part& part, const SetupPlan& plan, const std::strin
 
 void writeRemainingPicture(const Part& part, const PlanResult& plan, const std::string& path) {
   if (!plan.verified) throw InputError("no picture of what is left: the plan was not simulated");
+  writeRemainingPicture(part, plan.verification, plan.simulation, path);
+}
+
+void writeRemainingPicture(const Part& part, const VerificationReport& report, const VerificationState& simulation,
+                           const std::string& path) {
   const PartDistance distance(part.mesh);
-  const StockMesh stock = remainingStockMesh(plan.simulation.stock, plan.simulation.part, distance);
-  const VerificationReport& report = plan.verification;
+  const StockMesh stock = remainingStockMesh(simulation.stock, simulation.part, distance);
   char title[200];
   std::snprintf(title, sizeof title, "%s: stock left by the plan, %.0f mm3 beyond %.3g mm", partLabel(part).c_str(),
                 report.leftover_volume_mm3, report.tolerance_mm);
