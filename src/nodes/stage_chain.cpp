@@ -34,10 +34,9 @@ StageChain::StageChain(StageChainOptions options)
 // Sends the goal, forwards feedback, waits: a stop from the sink cancels the goal; a server that is not offered within
 // server_wait_s, or whose node goes away while it works, fails the stage, as does a result without success.
 template <class Action>
-typename actionlib::SimpleActionClient<Action>::ResultConstPtr StageChain::callAction(
-    actionlib::SimpleActionClient<Action>& client, const std::string& stage,
-    const typename actionlib::SimpleActionClient<Action>::Goal& goal,
-    const std::function<void(const typename actionlib::SimpleActionClient<Action>::FeedbackConstPtr&)>& on_feedback,
+ResultPtrOf<Action> StageChain::callAction(
+    actionlib::SimpleActionClient<Action>& client, const std::string& stage, const GoalOf<Action>& goal,
+    const std::function<void(const FeedbackPtrOf<Action>&)>& on_feedback,
     const ProgressSink& progress, const std::function<bool()>& go_on) {
   const auto start = Clock::now();
   while (!client.waitForServer(ros::Duration(options_.poll_s))) {
@@ -47,8 +46,7 @@ typename actionlib::SimpleActionClient<Action>::ResultConstPtr StageChain::callA
       throw StageFailure(stage, "no node offers it (waited " + std::to_string(static_cast<int>(options_.server_wait_s)) +
                                     " s for its action)");
   }
-  client.sendGoal(goal, typename actionlib::SimpleActionClient<Action>::SimpleDoneCallback(),
-                  typename actionlib::SimpleActionClient<Action>::SimpleActiveCallback(), on_feedback);
+  client.sendGoal(goal, {}, {}, [&on_feedback](const FeedbackPtrOf<Action>& f) { on_feedback(f); });
   while (!client.waitForResult(ros::Duration(options_.poll_s))) {
     if (!go_on()) {
       client.cancelGoal();
@@ -122,7 +120,7 @@ PlanResult StageChain::run(const PlanPartGoal& goal, const std::string& part_id,
   visibility_goal.no_side_correction = !options.visibility.side_correction;
   const auto seen = callAction<AnalyseVisibilityAction>(
       visibility_, "visibility", visibility_goal,
-      [&](const AnalyseVisibilityFeedbackConstPtr& f) { reportProgress(progress, "visibility", f->fraction, f->stage); },
+      [&](const FeedbackPtrOf<AnalyseVisibilityAction>& f) { reportProgress(progress, "visibility", f->fraction, f->stage); },
       progress, go_on);
   plan.visibility = visibilityFromMessage(part, seen->directions, seen->bits, seen->special);
   timed("visibility", start);
@@ -150,7 +148,7 @@ PlanResult StageChain::run(const PlanPartGoal& goal, const std::string& part_id,
   roughing_goal.plug_holes = options.finish;
   const auto roughed = callAction<PlanRoughingAction>(
       roughing_, "roughing", roughing_goal,
-      [&](const PlanRoughingFeedbackConstPtr& f) {
+      [&](const FeedbackPtrOf<PlanRoughingAction>& f) {
         reportProgress(progress, f->stage == "holes" ? "holes" : "roughing", f->fraction, f->operation);
       },
       progress, go_on);
@@ -174,7 +172,7 @@ PlanResult StageChain::run(const PlanPartGoal& goal, const std::string& part_id,
     finishing_goal.roughing_record = roughed->record;
     const auto finished = callAction<PlanFinishingAction>(
         finishing_, "finishing", finishing_goal,
-        [&](const PlanFinishingFeedbackConstPtr& f) {
+        [&](const FeedbackPtrOf<PlanFinishingAction>& f) {
           reportProgress(progress, "finishing", f->fraction, f->message.empty() ? f->stage : f->message);
         },
         progress, go_on);

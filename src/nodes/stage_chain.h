@@ -44,6 +44,14 @@ struct StageChainOptions {
   double poll_s = 0.1;        // how often a wait looks at the sink's answer and at the node's connection
 };
 
+// An action's goal, result and feedback messages (SimpleActionClient keeps its own names private).
+template <class Action>
+using GoalOf = typename Action::_action_goal_type::_goal_type;
+template <class Action>
+using ResultPtrOf = boost::shared_ptr<const typename Action::_action_result_type::_result_type>;
+template <class Action>
+using FeedbackPtrOf = boost::shared_ptr<const typename Action::_action_feedback_type::_feedback_type>;
+
 class StageChain {
  public:
   explicit StageChain(StageChainOptions options = {});
@@ -59,10 +67,9 @@ class StageChain {
 
  private:
   template <class Action>
-  typename actionlib::SimpleActionClient<Action>::ResultConstPtr  // not null
-  callAction(actionlib::SimpleActionClient<Action>& client, const std::string& stage,
-             const typename actionlib::SimpleActionClient<Action>::Goal& goal,
-             const std::function<void(const typename actionlib::SimpleActionClient<Action>::FeedbackConstPtr&)>& on_feedback,
+  ResultPtrOf<Action> callAction(actionlib::SimpleActionClient<Action>& client, const std::string& stage,
+                                 const GoalOf<Action>& goal,
+                                 const std::function<void(const FeedbackPtrOf<Action>&)>& on_feedback,
              const ProgressSink& progress, const std::function<bool()>& go_on);
 
   template <class Service>
