@@ -194,7 +194,7 @@ class CellSupervisorNode {
       PlanResult plan;
       try {
         plan = chain_.run(goal, part_id, *part, library, options, (fs::path(dir) / "remaining.png").string(),
-                          [this](const ProgressReport& p) { report(p.stage, p.fraction, p.message); },
+                          [this](const ProgressReport& p) { return report(p.stage, p.fraction, p.message); },
                           [this] { return !stopRequested(); });
       } catch (...) {
         std::error_code error;
