@@ -1,5 +1,6 @@
-// cell_supervisor over ROS: one plan_part goal makes the same plan as `art2part plan` (operations, faces, the
-// simulation's figures, a program), with feedback at least once a second; a cancel ends a running goal PREEMPTED within
+// cell_supervisor over ROS, chaining the stage nodes: one plan_part goal makes the same plan as `art2part plan`
+// (operations, faces, the simulation's figures, a program), with feedback at least once a second; a stage node killed
+// during a goal fails it naming the stage, and its respawn serves the next; a cancel ends a running goal PREEMPTED within
 // a second; goals beyond the queue are rejected with the reason; bad goals (paths outside the part folders, whether
 // the file exists or not, unit slips, unknown modes and machines) are refused and the node serves the next goal;
 // list_plans and get_plan serve the plan folders and nothing outside them.
@@ -12,7 +13,10 @@
 #include <art2part/PlanPartAction.h>
 
 #include <chrono>
+#include <csignal>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -21,6 +25,9 @@
 #include <mutex>
 #include <string>
 #include <vector>
+
+#include <sys/types.h>
+#include <signal.h>
 
 #include <nlohmann/json.hpp>
 
@@ -226,6 +233,39 @@ TEST(CellSupervisor, CancelEndsAGoalWithinASecond) {
     EXPECT_EQ(r.state, State::PREEMPTED) << r.result.reason;
     EXPECT_LE(r.seconds - asked, 1.0) << "the cancel took " << r.seconds - asked << " s";
   }
+}
+
+// The pid of a running node, from `rosnode info` (-1 when it is not running).
+int nodePid(const std::string& node) {
+  const std::string command = "rosnode info -q " + node + " 2>/dev/null";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return -1;
+  char line[512];
+  int pid = -1;
+  while (std::fgets(line, sizeof line, pipe))
+    if (std::strncmp(line, "Pid: ", 5) == 0) pid = std::atoi(line + 5);
+  pclose(pipe);
+  return pid;
+}
+
+// A stage node killed during a goal fails the goal naming the stage, within seconds (not its timeout of an hour); the
+// node launch respawns serves the next goal.
+TEST(CellSupervisor, AStageNodeKilledFailsTheGoalNamingTheStageAndItsRespawnServesTheNext) {
+  Tracker t(client());
+  t.send(featuretypeGoal());
+  ASSERT_TRUE(t.waitForStage("roughing", kPlanTimeout)) << "never reached roughing";
+  const int pid = nodePid("/roughing_planner");
+  ASSERT_GT(pid, 0) << "no roughing_planner pid";
+  ASSERT_EQ(::kill(pid, SIGKILL), 0);
+  const double killed = t.elapsed();
+  const GoalRun r = t.finish(60);
+  EXPECT_EQ(r.state, State::ABORTED) << r.result.reason;
+  EXPECT_NE(r.result.reason.find("stage 'roughing'"), std::string::npos) << r.result.reason;
+  EXPECT_LE(r.seconds - killed, 10.0) << "the goal failed " << r.seconds - killed << " s after the kill";
+
+  const GoalRun next = plan(featuretypeGoal());
+  EXPECT_EQ(next.state, State::SUCCEEDED) << next.result.reason;
+  EXPECT_NE(nodePid("/roughing_planner"), pid) << "served by a new roughing_planner";
 }
 
 // With a goal running and max_queue (1, in the test's launch file) goals waiting, the next goal is rejected with the
