@@ -208,7 +208,9 @@ PlanResult planPart(const Part& part, const ToolLibrary& library, const PlanOpti
 
   start = Clock::now();
   if (!stage("setups", 0, "minimum cover of the visibility cones")) return r;
-  r.setups = planSetups(part, r.visibility, options.setups);
+  r.setups = planSetups(part, r.visibility, options.setups, progress);
+  r.cancelled = r.setups.cancelled;
+  if (r.cancelled) return r;
   FinishingOptions finishing = options.finishing;
   finishing.mode = options.setups.mode;
   finishing.allowance = options.roughing.allowance;
@@ -245,7 +247,7 @@ PlanResult planPart(const Part& part, const ToolLibrary& library, const PlanOpti
     timed("finishing", start);
   }
 
-  combine(r, roughingStock(part, options.roughing), options.roughing.clearance);
+  combine(r, roughingStock(part, options.roughing), options.roughing.clearing.clearance);
   r.tools = toolsUsed(r.toolpath, library);
   if (options.verify && !r.toolpath.empty() && !r.cancelled) {
     start = Clock::now();
@@ -253,8 +255,10 @@ PlanResult planPart(const Part& part, const ToolLibrary& library, const PlanOpti
     VerifyOptions verify = options.verification;
     if (verify.resolution <= 0) verify.resolution = planVerifyResolution(boundingBox(part.mesh));
     if (verify.face_allowance.empty()) verify.face_allowance = faceAllowances(part, r.finishing, library);
-    r.verification = verifyToolpath(part.mesh, part.triangle_face, r.toolpath, r.tools, verify, &r.simulation);
-    r.verified = true;
+    r.verification =
+        verifyToolpath(part.mesh, part.triangle_face, r.toolpath, r.tools, verify, &r.simulation, progress);
+    r.cancelled = r.verification.cancelled;
+    r.verified = !r.cancelled;
     judgeFaces(r.verification, r.finishing);
     timed("verification", start);
   }
