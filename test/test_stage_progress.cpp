@@ -7,11 +7,13 @@
 #include <random>
 
 #include "art2part/geometry/part.h"
+#include "art2part/plan/plan_part.h"
 #include "art2part/setup/minimum_cover.h"
 #include "art2part/setup/setup_plan.h"
 #include "art2part/simulation/verify.h"
 #include "art2part/visibility/analysis.h"
 #include "test_meshes.h"
+#include "test_solids.h"
 
 using namespace art2part;
 
@@ -227,6 +229,42 @@ TEST(VerificationProgress, StopsWithinASecondInTheMiddleOfTheSweep) {
   EXPECT_FALSE(report.passed());
   EXPECT_LT(report.removed_volume_mm3, verifyToolpath(kBlock, {}, facing(), {flat6()}, fineLattice()).removed_volume_mm3)
       << "stopped part way, it removed less than the whole path";
+}
+
+// ---- through planPart -------------------------------------------------------------------------------------------------
+
+// planPart hands its sink to both stages: stopped in one, it returns within a second, cancelled, with the stages
+// before kept.
+TEST(PlanProgress, StopsInTheSetupsAndInTheVerification) {
+  const Part part = test::stepPart(test::pocketedBlock(Vec3(0, 0, 0), Vec3(60, 40, 20), 30, 20, 8, 4), "pocket");
+  const ToolLibrary library = loadToolLibrary(std::string(ART2PART_SOURCE_DIR) + "/config/tools.yaml");
+  PlanOptions options;
+  options.visibility.level = 2;
+  for (const std::string stage : {"setups", "verification"}) {
+    SCOPED_TRACE(stage);
+    double asked_at = -1;
+    int reports_after = 0;
+    const auto start = Clock::now();
+    PlanResult plan;
+    EXPECT_NO_THROW(plan = planPart(part, library, options, [&](const ProgressReport& p) {
+      if (asked_at >= 0) ++reports_after;
+      if (asked_at < 0 && p.stage == stage && p.fraction > 0) asked_at = since(start);
+      return asked_at < 0;
+    }));
+    ASSERT_GE(asked_at, 0) << "no report of the stage past its start";
+    EXPECT_LT(since(start) - asked_at, 1.0);
+    EXPECT_TRUE(plan.cancelled);
+    EXPECT_FALSE(plan.verified);
+    EXPECT_EQ(reports_after, 0);
+    if (stage == "setups") {
+      EXPECT_TRUE(plan.setups.setups.empty());
+      EXPECT_TRUE(plan.roughing.operations.empty());
+    } else {
+      EXPECT_FALSE(plan.setups.setups.empty()) << "the stages before are kept";
+      EXPECT_FALSE(plan.roughing.operations.empty());
+      EXPECT_TRUE(plan.verification.cancelled);
+    }
+  }
 }
 
 }  // namespace
