@@ -33,8 +33,8 @@ void benchOneSetup(const std::string& name, const Part& part, const ToolLibrary&
   Setup setup;
   setup.frame = setupFrame(part, Vec3::UnitZ());
   RoughingOptions options;
-  options.stepdown = 1.0;
-  options.rest_pass = false;
+  options.levels.stepdown = 1.0;
+  options.rest.enabled = false;
   auto start = std::chrono::steady_clock::now();
   const Tool* tool = chooseRoughingTool(part, setup, roughingTools(library), options);
   const double choose = secondsSince(start);
@@ -55,7 +55,7 @@ void benchOneSetup(const std::string& name, const Part& part, const ToolLibrary&
 void benchPlan(const std::string& name, const Part& part, const SetupPlan& setups, const ToolLibrary& library,
                bool five_axis) {
   RoughingOptions options;
-  options.five_axis = five_axis;
+  options.five_axis.enabled = five_axis;
   auto start = std::chrono::steady_clock::now();
   const RoughingPlan plan = planRoughing(part, setups, library, options);
   const double seconds = secondsSince(start);

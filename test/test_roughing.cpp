@@ -292,9 +292,9 @@ TEST(Roughing, BadToolsAreRefused) {
   SetupPlan setups;
   setups.setups.push_back(topSetup(part));
   RoughingOptions options;
-  options.tool = "no-such-tool";
+  options.clearing.tool = "no-such-tool";
   EXPECT_THROW(planRoughing(part, setups, library, options), InputError);
-  options.tool = "ball6";
+  options.clearing.tool = "ball6";
   EXPECT_THROW(planRoughing(part, setups, library, options), InputError);
 }
 

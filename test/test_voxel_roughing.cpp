@@ -109,9 +109,9 @@ TEST(VoxelRoughing, TheUndercutIsReachedByTiltingAndVerifiesClean) {
   SetupPlan setups;
   setups.setups.push_back(topSetup(part));
   RoughingOptions three;
-  three.rest_pass = false;
+  three.rest.enabled = false;
   RoughingOptions five = three;
-  five.five_axis = true;
+  five.five_axis.enabled = true;
   const RoughingPlan plan3 = planRoughing(part, setups, library, three);
   const RoughingPlan plan5 = planRoughing(part, setups, library, five);
   ASSERT_EQ(plan5.operations.size(), plan3.operations.size() + 1);
@@ -121,7 +121,7 @@ TEST(VoxelRoughing, TheUndercutIsReachedByTiltingAndVerifiesClean) {
   for (const CutterLocation& c : tilted.path) {
     EXPECT_NEAR(c.axis.norm(), 1.0, 1e-9);
     most_tilt = std::max(most_tilt, std::acos(std::clamp(c.axis.z(), -1.0, 1.0)) * 180 / kPi);
-    EXPECT_LE(std::acos(std::clamp(c.axis.z(), -1.0, 1.0)) * 180 / kPi, five.max_tilt_deg + 1e-6);
+    EXPECT_LE(std::acos(std::clamp(c.axis.z(), -1.0, 1.0)) * 180 / kPi, five.five_axis.max_tilt_deg + 1e-6);
   }
   EXPECT_GT(most_tilt, 20) << "the arm hides the undercut from +z: only a tilted tool gets under it";
   int plunges = tilted.plunges;

@@ -11,10 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <iostream>
-#include <memory>
 #include <string>
-
-#include <unistd.h>
 
 #include "arguments.h"
 #include "art2part/plan/plan_folder.h"
@@ -24,6 +21,7 @@
 #include "art2part/setup/setup_report.h"
 #include "art2part/simulation/verify.h"
 #include "commands.h"
+#include "terminal_progress.h"
 
 #ifndef ART2PART_CONFIG_DIR
 #define ART2PART_CONFIG_DIR "config"
@@ -39,35 +37,17 @@ double secondsSince(Clock::time_point start) { return std::chrono::duration<doub
 RoughingOptions roughingOptionsFrom(const Arguments& a) {
   RoughingOptions options;
   options.allowance = a.number("allowance", options.allowance);
-  options.stepdown = a.number("stepdown", options.stepdown);
-  options.tool = a.value("tool", "");
-  options.rest_pass = !a.flag("no-rest");
-  options.in_process_stock = !a.flag("whole-stock");
-  if (!(options.allowance >= 0) || !(options.stepdown >= 0))
+  options.levels.stepdown = a.number("stepdown", options.levels.stepdown);
+  options.clearing.tool = a.value("tool", "");
+  options.rest.enabled = !a.flag("no-rest");
+  options.stock.in_process = !a.flag("whole-stock");
+  if (!(options.allowance >= 0) || !(options.levels.stepdown >= 0))
     throw UsageError("--allowance and --stepdown must not be negative");
   // 5-axis voxel roughing after the 3-axis operations: asked for, or implied by 5-axis setups.
   const std::string roughing = a.value("roughing", a.value("mode", "3axis") == "5axis" ? "5axis" : "3axis");
   if (roughing != "3axis" && roughing != "5axis") throw UsageError("--roughing is 3axis or 5axis");
-  options.five_axis = roughing == "5axis";
+  options.five_axis.enabled = roughing == "5axis";
   return options;
-}
-
-// On a terminal, the stage, its share done and what it works on, one line rewritten in place at most four times a
-// second; on a pipe or a file, nothing (a log should not fill with carriage returns).
-ProgressSink terminalProgress() {
-  if (!isatty(STDERR_FILENO)) return {};
-  auto last = std::make_shared<Clock::time_point>();
-  auto last_stage = std::make_shared<std::string>();
-  return [last, last_stage](const ProgressReport& p) {
-    const auto now = Clock::now();
-    if (p.stage == *last_stage && now - *last < std::chrono::milliseconds(250)) return true;
-    *last = now;
-    *last_stage = p.stage;
-    std::string line = p.stage + " " + std::to_string(static_cast<int>(100 * p.fraction)) + "% " + p.message;
-    if (line.size() > 110) line.resize(110);
-    std::cerr << "\r\033[K" << line << std::flush;
-    return true;
-  };
 }
 
 }  // namespace
@@ -90,10 +70,11 @@ int runPlan(const std::vector<std::string>& args) {
   plan_options.finish = !a.flag("no-finish");
   plan_options.finishing.surface.scallop = a.number("scallop", plan_options.finishing.surface.scallop);
   if (!(plan_options.finishing.surface.scallop > 0)) throw UsageError("--scallop must be positive (mm)");
-  plan_options.verification.stock_margin = plan_options.roughing.stock_margin;
+  plan_options.verification.stock_margin = plan_options.roughing.stock.margin;
   plan_options.verification.resolution = a.number("verify-resolution", 0);
   const ToolLibrary library = loadToolLibrary(a.value("tools", std::string(ART2PART_CONFIG_DIR) + "/tools.yaml"));
-  const std::string default_machine = plan_options.roughing.five_axis ? "trunnion_5axis.yaml" : "vmc_3axis.yaml";
+  const std::string default_machine =
+      plan_options.roughing.five_axis.enabled ? "trunnion_5axis.yaml" : "vmc_3axis.yaml";
   const Machine machine = loadMachine(a.value("machine", std::string(ART2PART_CONFIG_DIR) + "/machines/" + default_machine));
 
   auto start = Clock::now();
@@ -101,7 +82,7 @@ int runPlan(const std::vector<std::string>& args) {
   const double load_seconds = secondsSince(start);
   const ProgressSink progress = terminalProgress();
   const PlanResult plan = planPart(part, library, plan_options, progress);
-  if (progress) std::cerr << "\r\033[K" << std::flush;
+  endTerminalProgress(progress);
 
   PlanFolderOptions folder;
   folder.program.machine = machine;

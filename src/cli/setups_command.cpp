@@ -7,6 +7,7 @@
 #include "art2part/setup/setup_report.h"
 #include "art2part/visibility/analysis.h"
 #include "commands.h"
+#include "terminal_progress.h"
 
 namespace art2part {
 
@@ -43,7 +44,9 @@ int runSetups(const std::vector<std::string>& args) {
   const VisibilityOptions visibility_options = visibilityOptionsFrom(a);
   const Part part = loadPart(path, loadOptionsFrom(a));
   const VisibilityResult visibility = analyseVisibility(part, visibility_options);
-  const SetupPlan plan = planSetups(part, visibility, setup_options);
+  const ProgressSink progress = terminalProgress();
+  const SetupPlan plan = planSetups(part, visibility, setup_options, progress);
+  endTerminalProgress(progress);
   if (a.flag("json")) {
     nlohmann::json j = setupPlanJson(plan, visibility.directions);
     j["part"] = path;

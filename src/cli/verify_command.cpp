@@ -12,6 +12,7 @@
 #include "art2part/simulation/stock_mesh.h"
 #include "art2part/simulation/verify.h"
 #include "commands.h"
+#include "terminal_progress.h"
 
 namespace art2part {
 
@@ -63,7 +64,10 @@ int runVerify(const std::vector<std::string>& args) {
     options.stock_mesh = &stock_mesh;
   }
   VerificationState state;
-  const VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, path, tools, options, &state);
+  const ProgressSink progress = terminalProgress();
+  const VerificationReport report =
+      verifyToolpath(part.mesh, part.triangle_face, path, tools, options, &state, progress);
+  endTerminalProgress(progress);
   writeStockOutputs(a, part.mesh, state, report);
   std::cout << reportJson(report) << "\n";
   return report.passed() ? 0 : 1;

@@ -36,7 +36,7 @@ PlanOptions finishingPlanOptionsFrom(const PlanFinishingGoal& goal) {
   checkedRequestValue(goal.level, request_limits::kSphereLevel);
   PlanOptions options;
   options.setups.mode = parseMachineMode(goal.mode.empty() ? std::string("3axis") : goal.mode);
-  options.roughing.five_axis = false;
+  options.roughing.five_axis.enabled = false;
   options.visibility.level = goal.level != 0 ? goal.level : kDefaultFinishingLevel;
   options.roughing.allowance = lengthMm(goal.allowance_m, request_limits::kAllowance, options.roughing.allowance);
   options.finishing.surface.scallop =

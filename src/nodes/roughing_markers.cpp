@@ -63,16 +63,16 @@ RoughingOptions roughingOptionsFrom(const PlanRoughingGoal& goal, const ToolLibr
                                     const std::string& library_path) {
   RoughingOptions options;
   options.allowance = lengthMm(goal.allowance_m, request_limits::kAllowance, options.allowance);
-  options.stepdown = lengthMm(goal.stepdown_m, request_limits::kStepdown, 0.0);
-  options.rest_pass = goal.rest_pass;
-  options.five_axis = goal.five_axis;
+  options.levels.stepdown = lengthMm(goal.stepdown_m, request_limits::kStepdown, 0.0);
+  options.rest.enabled = goal.rest_pass;
+  options.five_axis.enabled = goal.five_axis;
   if (!goal.tool.empty()) {
     const Tool* tool = library.find(goal.tool);
     if (!tool) throw InputError("no tool '" + goal.tool + "' in " + library_path);
     if (tool->type != ToolType::Flat && tool->type != ToolType::Bull)
       throw InputError("tool '" + goal.tool + "' is a " + toolTypeName(tool->type) +
                        ", roughing needs a flat or bull end mill");
-    options.tool = goal.tool;
+    options.clearing.tool = goal.tool;
   }
   return options;
 }

@@ -142,8 +142,8 @@ PlanResult StageChain::run(const PlanPartGoal& goal, const std::string& part_id,
   PlanRoughingGoal roughing_goal;
   roughing_goal.part_id = part_id;
   roughing_goal.mode = mode;
-  roughing_goal.rest_pass = options.roughing.rest_pass;
-  roughing_goal.five_axis = options.roughing.five_axis;
+  roughing_goal.rest_pass = options.roughing.rest.enabled;
+  roughing_goal.five_axis = options.roughing.five_axis.enabled;
   roughing_goal.setups_record = setups.response.record;
   roughing_goal.plug_holes = options.finish;
   const auto roughed = callAction<PlanRoughingAction>(

@@ -23,7 +23,7 @@ PlanOptions planOptionsFrom(const PlanPartGoal& goal) {
   if (!goal.mode.empty() && goal.mode != "3axis" && goal.mode != "5axis")
     throw InputError("mode is \"3axis\" or \"5axis\", not \"" + goal.mode + "\"");
   options.setups.mode = goal.mode == "5axis" ? MachineMode::FiveAxis : MachineMode::ThreeAxis;
-  options.roughing.five_axis = goal.mode == "5axis";
+  options.roughing.five_axis.enabled = goal.mode == "5axis";
   options.finish = !goal.roughing_only;
   checkedRequestValue(goal.scallop_m, request_limits::kScallop);
   if (goal.scallop_m > 0) options.finishing.surface.scallop = goal.scallop_m * 1000;

@@ -72,7 +72,7 @@ PlanResult planPart(const Part& part, const ToolLibrary& library, const PlanOpti
 
 // Setups: the minimum cover of the visibility cones, then (options.finish) the setups finishing adds beyond it.
 SetupPlan planPartSetups(const Part& part, const VisibilityResult& visibility, const ToolLibrary& library,
-                         const PlanOptions& options);
+                         const PlanOptions& options, const ProgressSink& progress = {});
 
 // What roughing hands on: the holes a drill or a helix makes (found only when options.finish; roughing leaves them
 // solid) and the roughing of the part with them plugged.

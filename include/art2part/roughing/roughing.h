@@ -11,6 +11,7 @@
 #include "art2part/common/progress.h"
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -23,32 +24,52 @@
 namespace art2part {
 
 struct RoughingOptions {
-  double allowance = 0.3;       // mm left on the part for finishing
-  double stepdown = 0;          // mm between levels; 0 = the tool's max_stepdown (never above its flute length)
-  double stepover = 0;          // mm between zig-zag passes; 0 = the tool's max_stepover
-  double stock_margin = 2.0;    // mm around the part's box (the verification's default), when no stock mesh is given
-  const Mesh* stock_mesh = nullptr;  // the raw stock instead (its convex hull per slab is cleared)
-  double clearance = 5.0;       // mm above the stock's top: the retract plane of each setup
-  double holder_margin = 0.5;   // mm kept between shank or holder and material
-  double ramp_angle_deg = 3.0;  // entries into stock
-  bool critical_heights = true;
-  double critical_angle_deg = 0.5;  // a flat face within this of square to the direction gets a level
-  std::string tool;             // a tool id to use instead of choosing; empty = choose
-  bool rest_pass = true;        // smaller tools over what the first left
-  int rest_passes = 2;          // at most this many, each tool at most half the previous one (20 -> 10 -> 4 mm)
-  // mm between a rest pass's levels (its tool's own step-down when that is less): re-roughing at fine levels takes
-  // the stairs that big steps leave on faces at a slant to the direction, and cuts little elsewhere.
-  double rest_stepdown = 2.0;
-  double tool_area_fraction = 0.85;  // the largest tool clearing at least this fraction of the best area
-  double rapid_mm_min = 10000;  // for time estimates
-  // Each setup starts from the stock the setups before it left (in_process_stock.h), not from the whole block.
-  bool in_process_stock = true;
-  int in_process_rays = 20000;   // z-rays of its coarse dexel lattice (cells of 0.5 mm at the finest)
+  // The raw stock the setups start from.
+  struct RawStock {
+    double margin = 2.0;  // mm around the part's box (the verification's default), when there is no mesh
+    std::shared_ptr<const Mesh> mesh;  // the raw stock instead of the box (its convex hull per slab is cleared)
+    // Each setup starts from the stock the setups before it left (in_process_stock.h), not from the whole block.
+    bool in_process = true;
+    int in_process_rays = 20000;  // z-rays of the in-process stock's coarse lattice (cells of 0.5 mm at the finest)
+  };
+  // Where the slabs of a setup lie.
+  struct Levels {
+    double stepdown = 0;            // mm between levels; 0 = the tool's max_stepdown (never above its flute length)
+    bool critical_heights = true;   // a level at the height of every flat face square to the direction
+    double critical_angle_deg = 0.5;  // a flat face within this of square to the direction gets a level
+  };
+  // How the main tool clears a level.
+  struct Clearing {
+    double stepover = 0;          // mm between zig-zag passes; 0 = the tool's max_stepover
+    std::string tool;             // a tool id to use instead of choosing; empty = choose
+    double tool_area_fraction = 0.85;  // the largest tool clearing at least this fraction of the best area
+    double ramp_angle_deg = 3.0;  // entries into stock
+    double clearance = 5.0;       // mm above the stock's top: the retract plane of each setup
+    double holder_margin = 0.5;   // mm kept between shank or holder and material
+  };
+  // Smaller tools over what the first left.
+  struct Rest {
+    bool enabled = true;          // rest passes after each setup's main operation
+    int passes = 2;               // at most this many, each tool at most half the previous one (20 -> 10 -> 4 mm)
+    // mm between a rest pass's levels (its tool's own step-down when that is less): re-roughing at fine levels takes
+    // the stairs that big steps leave on faces at a slant to the direction, and cuts little elsewhere.
+    double stepdown = 2.0;
+  };
   // 5-axis voxel roughing after each setup's 3-axis operations (voxel_roughing.h).
-  bool five_axis = false;
-  double max_tilt_deg = 60;     // the most the tool leans from the setup direction while cutting
-  int cone_level = 3;           // sphere level of the voxels' visibility cones (256 directions at 3)
-  double transition_sr = 0.01;  // least solid angle two neighbouring voxels' cones share for a move between them
+  struct FiveAxis {
+    bool enabled = false;         // run it
+    double max_tilt_deg = 60;     // the most the tool leans from the setup direction while cutting
+    int cone_level = 3;           // sphere level of the voxels' visibility cones (256 directions at 3)
+    double transition_sr = 0.01;  // least solid angle two neighbouring voxels' cones share for a move between them
+  };
+
+  double allowance = 0.3;       // mm left on the part for finishing
+  double rapid_mm_min = 10000;  // rapid rate for time estimates
+  RawStock stock;               // the raw stock and what earlier setups left of it
+  Levels levels;                // the slabs of each setup
+  Clearing clearing;            // the main tool and how it clears a level
+  Rest rest;                    // rest passes
+  FiveAxis five_axis;           // 5-axis voxel roughing
 };
 
 struct RoughingLevel {
@@ -120,9 +141,17 @@ std::vector<RoughingLevel> roughingLevels(const Part& part, const std::vector<Ve
 // The tools a roughing operation may use (flat and bull end mills with flutes up to kRoughingFluteRatio diameters),
 // largest first; and the choice for one setup.
 constexpr double kRoughingFluteRatio = 3.0;
+constexpr double kRoughingStepoverRatio = 0.4;  // stepover of a tool without max_stepover, in diameters
+constexpr double kMostStepoverRatio = 0.9;      // passes must overlap or ridges stay between them
+constexpr double kRestToolRatio = 0.5;          // a rest (or 5-axis) tool is at most this of the tool before it
+constexpr double kSmallestRoughingTool = 3.0;   // mm: smaller mills step down a fifth of their diameter (finishing)
 std::vector<const Tool*> roughingTools(const ToolLibrary& library);
 const Tool* chooseRoughingTool(const Part& part, const Setup& setup, const std::vector<const Tool*>& candidates,
                                const RoughingOptions& options, const InProcessStock* in_process = nullptr);
+
+// mm between the passes of `tool`: options.clearing.stepover, else the tool's max_stepover, else
+// kRoughingStepoverRatio diameters; never above kMostStepoverRatio diameters.
+double roughingStepover(const Tool& tool, const RoughingOptions& options);
 
 // Every setup, main and rest operations, on machiningSolid(part). Throws InputError for a tool id that the library
 // lacks or that cannot rough. Reports to `progress` after every level (stage "roughing", the share of the setups

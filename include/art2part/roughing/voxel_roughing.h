@@ -35,7 +35,8 @@ struct VoxelRoughingStats {
 };
 
 // One operation over what `left` (the SlabStates of the setup's last 3-axis operation) still holds; `tools` the
-// candidates, largest first (the largest that reaches at least options.tool_area_fraction of what the smallest does
+// candidates, largest first (the largest that reaches at least options.clearing.tool_area_fraction of what the smallest
+// does
 // is used). An operation with an empty path when nothing is reachable.
 RoughingOperation voxelRoughSetup(const Part& part, const Setup& setup, int setup_index,
                                   const std::vector<const Tool*>& tools, const RoughingOptions& options,

@@ -6,6 +6,7 @@
 // Plain data, no geometry: setup_plan.h builds the problem from a visibility result.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "art2part/visibility/visibility_map.h"
@@ -26,6 +27,9 @@ struct CoverProblem {
 struct CoverOptions {
   double time_limit_s = 5.0;  // for the search on the cyclic core; after it the best cover found is returned
   bool use_bonus = true;      // false: minimum size only, bonus ignored (ties broken by row index)
+  // Asked at the search's time checks (every few nodes); false stops the search as running out of time does, and
+  // minimumCover returns the best cover found without a second search (CoverResult::stopped). Empty: never stops.
+  std::function<bool()> keep_going;
 };
 
 struct CoverStats {
@@ -51,6 +55,7 @@ struct CoverResult {
   bool proven_minimal = false;      // the search finished: no smaller cover exists
   bool bonus_proven_best = false;   // ... and no cover of the same size earns more bonus
   double bonus = 0;                 // bonus weight earned by the chosen candidates
+  bool stopped = false;             // CoverOptions::keep_going said to stop: the best cover found so far
   CoverStats stats;
 };
 

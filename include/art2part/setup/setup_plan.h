@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "art2part/common/progress.h"
 #include "art2part/geometry/part.h"
 #include "art2part/setup/minimum_cover.h"
 #include "art2part/visibility/analysis.h"
@@ -58,6 +59,7 @@ struct SetupPlan {
   int greedy_setups = 0;                 // what greedy set cover needs on the same matrix, for comparison
   CoverStats cover;
   double seconds_reach = 0, seconds_cover = 0, seconds_assign = 0;
+  bool cancelled = false;  // the progress sink asked to stop: no setups (the cover was not finished)
 };
 
 // What each setup can reach: a triangle x direction matrix like the visibility map. 3-axis: the visibility map
@@ -76,7 +78,11 @@ CoverProblem setupCoverProblem(const Part& part, const VisibilityResult& visibil
 SetupFrame setupFrame(const Part& part, const Vec3& z);
 
 // The whole stage: reach, minimum cover, frames, face and triangle assignment. Throws InputError when the visibility
-// result does not belong to the part (triangle counts differ) or options are out of range.
-SetupPlan planSetups(const Part& part, const VisibilityResult& visibility, const SetupOptions& options = {});
+// result does not belong to the part (triangle counts differ) or options are out of range. Reports to `progress`
+// (stage "setups") before each step and at least every kSetupReportSeconds during the cover search, the fraction the
+// share of its time limit spent; when it asks to stop, returns within a second with no setups and `cancelled` set.
+constexpr double kSetupReportSeconds = 0.25;
+SetupPlan planSetups(const Part& part, const VisibilityResult& visibility, const SetupOptions& options = {},
+                     const ProgressSink& progress = {});
 
 }  // namespace art2part

@@ -41,6 +41,7 @@
 #include <string>
 #include <vector>
 
+#include "art2part/common/progress.h"
 #include "art2part/simulation/mesh_dexels.h"
 #include "art2part/simulation/part_distance.h"
 #include "art2part/simulation/stock.h"
@@ -72,12 +73,17 @@ struct SweepResult {
   std::map<int, MoveFinding> findings;  // by row of the toolpath (the point the move ends at), moves at fault only
   std::int64_t poses = 0;
   double seconds = 0;
+  bool cancelled = false;  // the progress sink asked to stop: the findings and the stock of the moves swept so far
 };
 
-// Tools by id; throws InputError naming the row for a tool id that is not there.
+// Tools by id; throws InputError naming the row for a tool id that is not there. With a progress sink the threads all
+// sweep while the calling thread reports (stage "verification", the share of the moves every thread has swept,
+// "move i of n") every kSweepReportSeconds and stops them within a move when the sink says so; the sink is only ever
+// called from the calling thread.
+constexpr double kSweepReportSeconds = 0.25;
 SweepResult sweepToolpath(Stock& stock, const MeshDexels& part, const PartDistance& part_distance,
                           const Toolpath& path, const std::map<std::string, ToolSolid>& tools,
-                          const SweepOptions& options = {});
+                          const SweepOptions& options = {}, const ProgressSink& progress = {});
 
 // Consecutive moves along one straight line (same tool, setup, kind of move and axis, same direction) are swept as
 // one segment: the sweep of a segment does not depend on how many points lie on it. Findings go to the move whose

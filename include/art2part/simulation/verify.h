@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "art2part/common/progress.h"
 #include "art2part/geometry/mesh.h"
 #include "art2part/simulation/leftover.h"
 #include "art2part/simulation/stock.h"
@@ -94,7 +95,10 @@ struct VerificationReport {
   double stock_volume_mm3 = 0, removed_volume_mm3 = 0, remaining_volume_mm3 = 0, part_volume_mm3 = 0;
   int closed_open_mesh_edges = 0;  // the part's mesh was open: its boundary chain's edges, closed as solid_closure.h says
 
-  bool passed() const { return gouges == 0 && collisions == 0; }
+  bool cancelled = false;  // the progress sink asked to stop: the findings of the moves swept so far, nothing left
+                           // measured; never passed
+
+  bool passed() const { return gouges == 0 && collisions == 0 && !cancelled; }
 };
 
 // What verifyToolpath keeps for outputs beyond the report (the picture, the remaining stock's mesh).
@@ -105,9 +109,12 @@ struct VerificationState {
 
 // `triangle_face`: the face of each part triangle (for cusps per face; may be empty). Throws InputError for a tool id
 // the toolpath uses but `tools` lacks, a tool that cannot exist, an empty path, or a resolution that is too fine.
+// Reports to `progress` (stage "verification"): before the lattice is built, during the sweep every
+// kSweepReportSeconds with the share of the moves swept (sweep.h), and before the leftover is measured; when it asks
+// to stop, returns within a second with `cancelled` set.
 VerificationReport verifyToolpath(const Mesh& part, const std::vector<int>& triangle_face, const Toolpath& path,
                                   const std::vector<Tool>& tools, const VerifyOptions& options = {},
-                                  VerificationState* state = nullptr);
+                                  VerificationState* state = nullptr, const ProgressSink& progress = {});
 
 // The lattice spacing `resolution = 0` stands for: about 1.5 M rays over the box, never finer than 0.1 mm.
 double automaticResolution(const Box& box);

@@ -197,9 +197,9 @@ FinishingOptions stageFinishingOptions(const PlanOptions& options) {
 }
 
 SetupPlan planPartSetups(const Part& part, const VisibilityResult& visibility, const ToolLibrary& library,
-                         const PlanOptions& options) {
-  SetupPlan setups = planSetups(part, visibility, options.setups);
-  if (!options.finish) return setups;
+                         const PlanOptions& options, const ProgressSink& progress) {
+  SetupPlan setups = planSetups(part, visibility, options.setups, progress);
+  if (!options.finish || setups.cancelled) return setups;
   double longest_flutes = 0;
   for (const Tool& t : library.tools)
     if (t.type == ToolType::Flat) longest_flutes = std::max(longest_flutes, t.flute_length);
@@ -239,7 +239,7 @@ FinishingPlan planPartFinishing(const Part& part, const VisibilityResult& visibi
 void combinePlan(PlanResult& plan, const Part& part, const ToolLibrary& library, const PlanOptions& options) {
   plan.operations.clear();
   plan.toolpath.clear();
-  combine(plan, roughingStock(part, options.roughing), options.roughing.clearance);
+  combine(plan, roughingStock(part, options.roughing), options.roughing.clearing.clearance);
   plan.tools = toolsUsed(plan.toolpath, library);
 }
 
@@ -270,7 +270,9 @@ PlanResult planPart(const Part& part, const ToolLibrary& library, const PlanOpti
 
   start = Clock::now();
   if (!stage("setups", 0, "minimum cover of the visibility cones")) return r;
-  r.setups = planPartSetups(part, r.visibility, library, options);
+  r.setups = planPartSetups(part, r.visibility, library, options, progress);
+  r.cancelled = r.setups.cancelled;
+  if (r.cancelled) return r;
   timed("setups", start);
 
   start = Clock::now();
@@ -296,8 +298,9 @@ PlanResult planPart(const Part& part, const ToolLibrary& library, const PlanOpti
     start = Clock::now();
     stage("verification", 0, "simulating " + std::to_string(r.toolpath.size()) + " moves");
     r.verification = verifyToolpath(part.mesh, part.triangle_face, r.toolpath, r.tools,
-                                    planVerifyOptions(part, r, library, options), &r.simulation);
-    r.verified = true;
+                                    planVerifyOptions(part, r, library, options), &r.simulation, progress);
+    r.cancelled = r.verification.cancelled;
+    r.verified = !r.cancelled;
     judgeFaces(r.verification, r.finishing);
     timed("verification", start);
   }

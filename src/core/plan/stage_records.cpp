@@ -46,7 +46,7 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(CoverStats, elements, candidates, uncoverable
                                    search_nodes, seconds_reduce, seconds_search)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(SetupPlan, mode, max_tilt_deg, setups, unmachinable_triangles, unmachinable_faces,
                                    split_faces, proven_minimal, bonus_proven_best, greedy_setups, cover, seconds_reach,
-                                   seconds_cover, seconds_assign)
+                                   seconds_cover, seconds_assign, cancelled)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(HolderStep, diameter, length)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Tool, id, type, diameter, corner_radius, point_angle_deg, flute_length,
                                    shank_diameter, stickout, holder, flutes, spindle_rpm, feed_mm_min, plunge_mm_min,
@@ -72,7 +72,7 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(VerificationReport, gouges, worst_gouge_mm, g
                                    region_count, faces, face_count, face_checks, resolution_mm, tolerance_mm, spacing,
                                    dexels, moves, poses, seconds_sweep, seconds_total, moves_per_second, stock_box,
                                    stock_volume_mm3, removed_volume_mm3, remaining_volume_mm3, part_volume_mm3,
-                                   closed_open_mesh_edges)
+                                   closed_open_mesh_edges, cancelled)
 
 // A toolpath point as an array (a plan has up to millions): [op, setup, tool, move, tip, axis].
 void to_json(json& j, const CutterLocation& c) { j = {c.op, c.setup, c.tool, c.move, c.tip, c.axis}; }

@@ -12,9 +12,13 @@ namespace art2part {
 
 namespace {
 
+// The lattice's cells are never finer than this, whatever the rays asked: the model only needs to know where whole
+// slabs of stock are gone.
+constexpr double kFinestCellMm = 0.5;
+
 DexelLattice coarseLattice(const Box& box, int rays) {
   const Vec3 s = box.size();
-  const double resolution = std::max(0.5, std::sqrt(s.x() * s.y() / std::max(rays, 1)));
+  const double resolution = std::max(kFinestCellMm, std::sqrt(s.x() * s.y() / std::max(rays, 1)));
   return DexelLattice::over(box, resolution);
 }
 

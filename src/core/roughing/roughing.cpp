@@ -14,6 +14,20 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
+// Tuning of the levels and the regions; each value decides what the plans look like.
+constexpr double kStepdownOfDiameter = 0.5;   // a tool without max_stepdown steps down half its diameter
+constexpr double kMergedLevelMm = 0.02;       // a fixed height this close below the previous one merges with it
+constexpr double kRestSkinMm = 0.05;          // a rest pass keeps this beyond the allowance: never grazes the skin
+// The tool centre may go this far beyond the stock it is to clear (grown by its radius), so the edges of the
+// stock are cut through; a rest pass's target is its predecessor's leftovers, so it stays closer.
+constexpr double kCentreBeyondStockMm = 1.0;
+constexpr double kRestCentreBeyondStockMm = 0.5;
+constexpr double kRestTargetOpeningMm = 0.02;  // a rest target thinner than twice this is no target (opened away)
+constexpr double kRestTargetSliverMm2 = 0.01;  // and a piece of it smaller than this
+constexpr double kCentreSliverMm2 = 0.001;     // centre regions smaller than this are dropped
+constexpr double kAirGapMm = 0.1;              // centres farther than radius + this from the stock cut air
+constexpr double kClearedInsetMm = 0.05;       // the cleared area: centres grown by the radius less this
+
 double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -40,14 +54,11 @@ SetupGeometry setupGeometry(const Part& part, const Setup& setup, const Roughing
 }
 
 double stepdownFor(const Tool& tool, const RoughingOptions& options, bool rest) {
-  double step = options.stepdown > 0 ? options.stepdown : (tool.max_stepdown > 0 ? tool.max_stepdown : tool.diameter / 2);
-  if (rest && options.rest_stepdown > 0) step = std::min(step, options.rest_stepdown);
+  double step = options.levels.stepdown > 0 ? options.levels.stepdown
+                                            : (tool.max_stepdown > 0 ? tool.max_stepdown
+                                                                     : kStepdownOfDiameter * tool.diameter);
+  if (rest && options.rest.stepdown > 0) step = std::min(step, options.rest.stepdown);
   return std::min(step, tool.flute_length);
-}
-
-double stepoverFor(const Tool& tool, const RoughingOptions& options) {
-  const double step = options.stepover > 0 ? options.stepover : (tool.max_stepover > 0 ? tool.max_stepover : 0.4 * tool.diameter);
-  return std::min(step, 0.9 * tool.diameter);  // passes must overlap or ridges stay between them
 }
 
 // The stock a previous operation left in the slab [z, top] (its slabs contain ours: our levels include theirs).
@@ -85,11 +96,18 @@ void estimateTime(const Tool& tool, const RoughingOptions& options, RoughingOper
 
 }  // namespace
 
+double roughingStepover(const Tool& tool, const RoughingOptions& options) {
+  const double step = options.clearing.stepover > 0 ? options.clearing.stepover
+                                                    : (tool.max_stepover > 0 ? tool.max_stepover
+                                                                             : kRoughingStepoverRatio * tool.diameter);
+  return std::min(step, kMostStepoverRatio * tool.diameter);
+}
+
 Mesh roughingStock(const Part& part, const RoughingOptions& options) {
-  if (options.stock_mesh) return *options.stock_mesh;
+  if (options.stock.mesh) return *options.stock.mesh;
   Box box = boundingBox(part.mesh);
-  box.min -= Vec3::Constant(options.stock_margin);
-  box.max += Vec3::Constant(options.stock_margin);
+  box.min -= Vec3::Constant(options.stock.margin);
+  box.max += Vec3::Constant(options.stock.margin);
   return boxMesh(box);
 }
 
@@ -97,8 +115,8 @@ std::vector<RoughingLevel> roughingLevels(const Part& part, const std::vector<Ve
                                           double stock_top, double stock_bottom, double stepdown,
                                           const RoughingOptions& options) {
   std::vector<RoughingLevel> critical;
-  if (options.critical_heights) {
-    const double cos_limit = std::cos(options.critical_angle_deg * kPi / 180);
+  if (options.levels.critical_heights) {
+    const double cos_limit = std::cos(options.levels.critical_angle_deg * kPi / 180);
     std::vector<char> seen(part.faces.size(), 0);
     for (int t = 0; t < part.mesh.triangleCount(); ++t) {
       const int f = t < static_cast<int>(part.triangle_face.size()) ? part.triangle_face[t] : -1;
@@ -121,7 +139,7 @@ std::vector<RoughingLevel> roughingLevels(const Part& part, const std::vector<Ve
   std::vector<RoughingLevel> levels;
   double top = stock_top;
   for (const RoughingLevel& f : fixed) {
-    if (top - f.z < 0.02) {  // a critical height a hair below the previous one: merged
+    if (top - f.z < kMergedLevelMm) {  // a critical height a hair below the previous one: merged
       if (f.critical && !levels.empty()) levels.back().critical = true;
       continue;
     }
@@ -153,20 +171,19 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
     std::sort(levels.begin(), levels.end(), [](const RoughingLevel& p, const RoughingLevel& q) { return p.z > q.z; });
   }
   const double r = tool.diameter / 2;
-  // A rest pass keeps a hair more than the allowance so that it never grazes the thin skin its predecessor left.
-  const double allowance = options.allowance + (before ? 0.05 : 0.0);
+  const double allowance = options.allowance + (before ? kRestSkinMm : 0.0);
   const std::vector<BodyZone> zones = bodyZones(tool);
   ClearingOptions clearing;
-  clearing.stepover = stepoverFor(tool, options);
-  clearing.ramp_angle_deg = options.ramp_angle_deg;
-  clearing.clearance_z = g.stock_top + options.clearance;
+  clearing.stepover = roughingStepover(tool, options);
+  clearing.ramp_angle_deg = options.clearing.ramp_angle_deg;
+  clearing.clearance_z = g.stock_top + options.clearing.clearance;
 
   // Shadows at the levels only: the body zones keep clear of the stock left above, which holds the part's sections,
   // so no zone bottom needs a shadow of its own.
   std::vector<double> heights;
   for (const RoughingLevel& l : levels) heights.push_back(l.z);
   const ShadowStack shadows(g.part, part.mesh.triangles, heights);
-  ForbiddenRegion forbidden_region(shadows, r + allowance, zones, options.holder_margin, true);
+  ForbiddenRegion forbidden_region(shadows, r + allowance, zones, options.clearing.holder_margin, true);
   ForbiddenRegion part_with_allowance(shadows, allowance, {}, 0, false);  // a rest pass's target: the stock beyond it
   std::vector<SlabState> slabs;
   slabs.reserve(levels.size());  // left_above points into it
@@ -200,7 +217,9 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
     Region target = stock;
     if (before) {
       const Region& skin = part_with_allowance.at(z, {});
-      target = dropSlivers(offsetRegion(offsetRegion(subtract(stock, skin), -0.02), 0.02), 0.01);
+      const Region beyond_skin = subtract(stock, skin);
+      target = dropSlivers(offsetRegion(offsetRegion(beyond_skin, -kRestTargetOpeningMm), kRestTargetOpeningMm),
+                           kRestTargetSliverMm2);
     }
     // The cutter against the part, shank and holder against the part and the stock left above; every level above's
     // region is in it (the column over every cutting point is clear).
@@ -209,21 +228,23 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
     ClearingLevel clear;
     clear.z = z;
     clear.top = top;
-    clear.centre = regionEmpty(target) ? Region{} : dropSlivers(subtract(offsetRegion(target, r + (before ? 0.5 : 1.0)), forbidden), 0.001);
+    const double beyond = before ? kRestCentreBeyondStockMm : kCentreBeyondStockMm;
+    if (!regionEmpty(target))
+      clear.centre = dropSlivers(subtract(offsetRegion(target, r + beyond), forbidden), kCentreSliverMm2);
     // A check on the grown region: no centre may lie in the shadow itself. Where one does (the grown region lost a
     // piece of the shadow: seen on CTC-02, setup 2.8 deg off z, tips 27 mm deep in the part), this level takes the
     // shadow grown directly.
     if (!regionEmpty(clear.centre) && !regionEmpty(intersect(clear.centre, shadows.at(z)))) {
       ++op.direct_levels;
-      clear.centre = dropSlivers(subtract(clear.centre, offsetRegion(shadows.at(z), r + allowance)), 0.001);
+      clear.centre = dropSlivers(subtract(clear.centre, offsetRegion(shadows.at(z), r + allowance)), kCentreSliverMm2);
     }
-    clear.air = subtract(clear.centre, offsetRegion(stock, r + 0.1));
+    clear.air = subtract(clear.centre, offsetRegion(stock, r + kAirGapMm));
     ClearingStats stats;
     const std::vector<ClearingPoint> moves = clearLevel(clear, clearing, &stats);
     appendMoves(moves, setup.frame, tool, setup_index, op);
     countEntries(stats, op);
 
-    const Region cleared = offsetRegion(clear.centre, r - 0.05);
+    const Region cleared = offsetRegion(clear.centre, r - kClearedInsetMm);
     SlabState slab{z, top, subtract(stock, cleared)};
     level.cleared_mm2 = regionArea(intersect(stock, cleared));
     level.remaining_mm2 = regionArea(slab.remaining);

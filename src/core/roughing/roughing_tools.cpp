@@ -28,15 +28,22 @@ std::vector<const Tool*> roughingTools(const ToolLibrary& library) {
 
 namespace {
 
+// The tool choice measures each candidate on kChoiceLevels levels evenly down the stock, against shadows every
+// kChoiceShadowSpacingMm above the lowest (for shanks and holders); the centre may go kChoiceCentreBeyondMm beyond
+// the stock, as in roughSetup.
+constexpr int kChoiceLevels = 8;
+constexpr double kChoiceShadowSpacingMm = 2;
+constexpr double kChoiceCentreBeyondMm = 1.0;
+
 // Area a tool would sweep over a few levels of a setup, counting only the part (not stock left above) against its
 // shank and holder: a quick measure to compare tools.
 double sweptArea(const Tool& tool, const std::vector<double>& zs, const ShadowStack& shadows,
                  const std::vector<Region>& stocks, const RoughingOptions& options) {
   const double r = tool.diameter / 2;
-  ForbiddenRegion forbidden(shadows, r + options.allowance, bodyZones(tool), options.holder_margin, false);
+  ForbiddenRegion forbidden(shadows, r + options.allowance, bodyZones(tool), options.clearing.holder_margin, false);
   double area = 0;
   for (std::size_t i = 0; i < zs.size(); ++i) {
-    const Region centre = subtract(offsetRegion(stocks[i], r + 1.0), forbidden.at(zs[i], {}));
+    const Region centre = subtract(offsetRegion(stocks[i], r + kChoiceCentreBeyondMm), forbidden.at(zs[i], {}));
     area += regionArea(intersect(stocks[i], offsetRegion(centre, r)));
   }
   return area;
@@ -57,8 +64,8 @@ const Tool* chooseRoughingTool(const Part& part, const Setup& setup, const std::
   }
   // Eight levels evenly down the stock, and where they see nothing for any tool (a setup from the side of a long
   // part: the first is already deeper than any tool reaches), eight evenly down the first of them.
-  for (const double depth : {top - bottom, (top - bottom) / 8.5}) {
-    const int n = 8;
+  constexpr int n = kChoiceLevels;
+  for (const double depth : {top - bottom, (top - bottom) / (n + 0.5)}) {
     std::vector<double> zs, heights;
     std::vector<Region> stocks;
     double above = top;
@@ -75,7 +82,7 @@ const Tool* chooseRoughingTool(const Part& part, const Setup& setup, const std::
       for (int i = 0; i < n; ++i) stocks[i] = intersect(stocks[i], left[i]);
     }
     // Shadows at the levels and every 2 mm above them (for the shanks and holders).
-    for (double h = zs.back(); h <= top; h += 2) heights.push_back(h);
+    for (double h = zs.back(); h <= top; h += kChoiceShadowSpacingMm) heights.push_back(h);
     heights.insert(heights.end(), zs.begin(), zs.end());
     const ShadowStack shadows(vertices, part.mesh.triangles, heights);
     // The reference is what the smallest tool sweeps (a smaller tool reaches at least as far, up to its shorter
@@ -83,7 +90,7 @@ const Tool* chooseRoughingTool(const Part& part, const Setup& setup, const std::
     const double best = sweptArea(*candidates.back(), zs, shadows, stocks, options);
     if (best <= 0) continue;
     for (const Tool* tool : candidates)
-      if (sweptArea(*tool, zs, shadows, stocks, options) >= options.tool_area_fraction * best) return tool;
+      if (sweptArea(*tool, zs, shadows, stocks, options) >= options.clearing.tool_area_fraction * best) return tool;
     return candidates.back();
   }
   return nullptr;
@@ -91,11 +98,17 @@ const Tool* chooseRoughingTool(const Part& part, const Setup& setup, const std::
 
 namespace {
 
-// The rest tool: the largest flat mill at most half the previous tool's diameter, at least 3 mm (smaller ones step down
-// a fifth of their diameter: finishing work, not roughing).
+// A flat mill of the rest tool's size class after `main`: at most kRestToolRatio of its diameter, at least
+// kSmallestRoughingTool.
+bool restSized(const Tool& t, const Tool& main) {
+  return t.type == ToolType::Flat && t.diameter <= kRestToolRatio * main.diameter + 1e-9 &&
+         t.diameter >= kSmallestRoughingTool - 1e-9;
+}
+
+// The rest tool: the largest flat mill of the rest size class.
 const Tool* restTool(const std::vector<const Tool*>& candidates, const Tool& main) {
   for (const Tool* t : candidates)
-    if (t->diameter <= 0.5 * main.diameter + 1e-9 && t->diameter >= 3 - 1e-9 && t->type == ToolType::Flat) return t;
+    if (restSized(*t, main)) return t;
   return nullptr;
 }
 
@@ -124,24 +137,24 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
   plan.closed_open_mesh_edges = closure.boundary_edges;
   const std::vector<const Tool*> candidates = roughingTools(library);
   const Tool* forced = nullptr;
-  if (!options.tool.empty()) {
-    forced = library.find(options.tool);
-    if (!forced) throw InputError("roughing: no tool '" + options.tool + "' in the tool library");
+  if (!options.clearing.tool.empty()) {
+    forced = library.find(options.clearing.tool);
+    if (!forced) throw InputError("roughing: no tool '" + options.clearing.tool + "' in the tool library");
     if (forced->type != ToolType::Flat && forced->type != ToolType::Bull)
-      throw InputError("roughing: tool '" + options.tool + "' is a " + toolTypeName(forced->type) +
+      throw InputError("roughing: tool '" + options.clearing.tool + "' is a " + toolTypeName(forced->type) +
                        ", roughing needs a flat or bull end mill");
   }
   if (!forced && candidates.empty()) throw InputError("roughing: the tool library has no flat or bull end mill");
   std::unique_ptr<InProcessStock> in_process;
-  if (options.in_process_stock && setups.setups.size() > 1)
-    in_process = std::make_unique<InProcessStock>(part, roughingStock(part, options), options.in_process_rays);
+  if (options.stock.in_process && setups.setups.size() > 1)
+    in_process = std::make_unique<InProcessStock>(part, roughingStock(part, options), options.stock.in_process_rays);
   plan.stock_left.resize(setups.setups.size());
   const int n = static_cast<int>(setups.setups.size());
   long levels_done = 0;
   for (int k = 0; k < n && !plan.cancelled; ++k) {
     // Each operation's reports as a share of all the setups, levels counted on: setup k spans [k/n, (k+1)/n], shared
     // out among the operations it may have (the main one, the rest passes), operation j taking the j-th part.
-    const int slots = 1 + (options.rest_pass ? std::max(0, options.rest_passes) : 0);
+    const int slots = 1 + (options.rest.enabled ? std::max(0, options.rest.passes) : 0);
     int slot = 0;
     const ProgressSink within = [&](const ProgressReport& p) {
       const double share = (slot + std::clamp(p.fraction, 0.0, 1.0)) / slots;
@@ -183,7 +196,7 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
     else continue;
     // Rest passes, each with a tool at most half the size of the one before, over what that one left.
     const Tool* previous = tool;
-    for (int pass = 0; options.rest_pass && pass < options.rest_passes; ++pass) {
+    for (int pass = 0; options.rest.enabled && pass < options.rest.passes; ++pass) {
       const Tool* rest = restTool(candidates, *previous);
       if (!rest) break;
       slot = pass + 1;
@@ -207,11 +220,10 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
     plan.stock_left[k] = left;
     // 5-axis voxel roughing over what the 3-axis operations left, with a flat mill of the rest tool's size class
     // (at most half the main tool: what the main tool could not reach upright, it rarely reaches leaning over).
-    if (options.five_axis) {
+    if (options.five_axis.enabled) {
       std::vector<const Tool*> tilted;
       for (const Tool* t : candidates)
-        if (t->type == ToolType::Flat && t->diameter <= 0.5 * tool->diameter + 1e-9 && t->diameter >= 3 - 1e-9)
-          tilted.push_back(t);
+        if (restSized(*t, *tool)) tilted.push_back(t);
       RoughingOperation op = voxelRoughSetup(part, setup, k, tilted, options, left);
       if (cuts(op)) plan.operations.push_back(std::move(op));
     }

@@ -19,6 +19,9 @@ namespace art2part {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+constexpr double kLayerOfDiameter = 0.8;    // slabs merged or cut to about this many tool diameters (buildSlabs)
+constexpr double kMaterialSliverMm2 = 1.0;  // material of a slab in pieces smaller than this is left to finishing
+constexpr double kSteepestTiltDeg = 85.0;   // the reach of a leaning body is measured at no more tilt than this
 
 // A slab of stock the 3-axis operations left: its material (the part's section taken out) and, for the holder
 // check of the slabs below, that material grown by the shank's and the holder's radii.
@@ -53,11 +56,11 @@ struct Context {
   double clearance_z = 0;   // setup frame
 
   Context(const Part& p, const Setup& s, const RoughingOptions& o)
-      : part(p), setup(s), options(o), directions(sampleSphere(o.cone_level)), cones(p.mesh, directions),
+      : part(p), setup(s), options(o), directions(sampleSphere(o.five_axis.cone_level)), cones(p.mesh, directions),
         collider(p.mesh) {
     all.assign((directions.size() + 63) / 64, 0);
     for (int d = 0; d < directions.size(); ++d) all[d >> 6] |= std::uint64_t(1) << (d & 63);
-    reach = reachCone(directions, s.frame.z, o.max_tilt_deg);
+    reach = reachCone(directions, s.frame.z, o.five_axis.max_tilt_deg);
   }
 };
 
@@ -81,7 +84,7 @@ double bodyRadius(const Tool& tool, bool holder) {
 // united, or a thicker one is cut into layers.
 void buildSlabs(Context& c, const std::vector<SlabState>& left, const Tool& tool) {
   const Adjacency adjacency = buildAdjacency(c.part.mesh);
-  const double thickness = 0.8 * tool.diameter;
+  const double thickness = kLayerOfDiameter * tool.diameter;
   std::vector<const SlabState*> order;
   for (const SlabState& s : left) order.push_back(&s);
   std::sort(order.begin(), order.end(), [](const SlabState* a, const SlabState* b) { return a->z > b->z; });
@@ -93,11 +96,12 @@ void buildSlabs(Context& c, const std::vector<SlabState>& left, const Tool& tool
     slab.remaining = std::move(remaining);
     if (!regionEmpty(slab.remaining)) {
       slab.part = offsetRegion(part, c.options.allowance);
-      slab.material = dropSlivers(subtract(slab.remaining, slab.part), 1.0);
+      slab.material = dropSlivers(subtract(slab.remaining, slab.part), kMaterialSliverMm2);
       slab.has_material = !regionEmpty(slab.material);
     }
-    slab.near_shank = RegionLocator(growForBody(slab.material, bodyRadius(tool, false) + c.options.holder_margin));
-    slab.near_holder = RegionLocator(growForBody(slab.material, bodyRadius(tool, true) + c.options.holder_margin));
+    const double margin = c.options.clearing.holder_margin;
+    slab.near_shank = RegionLocator(growForBody(slab.material, bodyRadius(tool, false) + margin));
+    slab.near_holder = RegionLocator(growForBody(slab.material, bodyRadius(tool, true) + margin));
     c.slabs.push_back(std::move(slab));
   };
   for (std::size_t i = 0; i < order.size();) {
@@ -127,7 +131,7 @@ void buildSlabs(Context& c, const std::vector<SlabState>& left, const Tool& tool
     i = j;
   }
   std::sort(c.slabs.begin(), c.slabs.end(), [](const Slab& a, const Slab& b) { return a.z > b.z; });
-  c.clearance_z = top + c.options.clearance;
+  c.clearance_z = top + c.options.clearing.clearance;
 }
 
 Vec3 inFrame(const Vec3& v, const SetupFrame& f) { return Vec3(v.dot(f.x), v.dot(f.y), v.dot(f.z)); }
@@ -170,8 +174,8 @@ bool clearOfStockAbove(const Context& c, const Tool& tool, std::size_t slab_inde
 ProfileOptions profileOptions(const RoughingOptions& o) {
   ProfileOptions p;
   p.flute_margin = o.allowance;
-  p.body_margin = o.holder_margin;
-  p.max_tilt_deg = o.max_tilt_deg;
+  p.body_margin = o.clearing.holder_margin;
+  p.max_tilt_deg = o.five_axis.max_tilt_deg;
   return p;
 }
 
@@ -198,8 +202,8 @@ Standing standingMaterial(const Context& c, const Slab& slab, const std::array<R
   Standing standing;
   standing.z = slab.z;
   standing.thickness = slab.top - slab.z;
-  const double margin = c.options.holder_margin;
-  const double tan_tilt = std::tan(std::min(c.options.max_tilt_deg, 85.0) * kPi / 180);
+  const double margin = c.options.clearing.holder_margin;
+  const double tan_tilt = std::tan(std::min(c.options.five_axis.max_tilt_deg, kSteepestTiltDeg) * kPi / 180);
   // A zone starting higher above the tip than the body stays in the slab (thickness / cos(max tilt)) is never looked
   // at: the library's flutes are longer than that, so a slab 0.8 D thick usually needs none.
   const double inside = standing.inside = standing.thickness * std::sqrt(1 + tan_tilt * tan_tilt);
@@ -296,11 +300,6 @@ void orientVoxel(const Context& c, const Tool& tool, std::size_t slab_index, Vox
   v.live = true;
 }
 
-double stepoverOf(const Tool& tool, const RoughingOptions& options) {
-  const double step = options.stepover > 0 ? options.stepover : (tool.max_stepover > 0 ? tool.max_stepover : 0.4 * tool.diameter);
-  return std::min(step, 0.9 * tool.diameter);
-}
-
 // Rows of voxels over a slab's material, `spacing` apart, points every half of it, reaching a little beyond the
 // material on both sides (so a pass can start in air). The rows run square to `tilt` (the mean sideways lean of the
 // access directions, unit, in the slab plane): the tool then cuts with its side, and the rows come nearest the way
@@ -359,9 +358,9 @@ int countLive(const Context& c, const Tool& tool, double spacing, int every, Poi
 
 // 4.1.4: neighbours are joined when their cones overlap enough and the tool half-way between is clear.
 bool transition(const Context& c, const Tool& tool, const Voxel& a, const Voxel& b) {
-  if (intersectionSolidAngle(c.directions, a.cone, b.cone) < c.options.transition_sr) return false;
+  if (intersectionSolidAngle(c.directions, a.cone, b.cone) < c.options.five_axis.transition_sr) return false;
   const ToolPose mid{0.5 * (a.tip + b.tip), (a.axis + b.axis).normalized()};
-  return c.collider.toolClear(tool, mid, c.options.allowance, c.options.holder_margin);
+  return c.collider.toolClear(tool, mid, c.options.allowance, c.options.clearing.holder_margin);
 }
 
 // The tool can come down its axis from the clearance plane to the voxel without meeting the part.
@@ -372,7 +371,7 @@ bool approachClear(const Context& c, const Tool& tool, const Voxel& v) {
   const double step = std::max(5.0, 0.5 * toolLength(tool));
   for (double s = step; s < length + step; s += step)
     if (!c.collider.toolClear(tool, {v.tip + std::min(s, length) * v.axis, v.axis}, c.options.allowance,
-                              c.options.holder_margin))
+                              c.options.clearing.holder_margin))
       return false;
   return true;
 }
@@ -448,7 +447,7 @@ RoughingOperation voxelRoughSetup(const Part& part, const Setup& setup, int setu
   for (const Tool* t : tools) {
     c.slabs.clear();
     buildSlabs(c, left, *t);
-    const double spacing = 2 * stepoverOf(*t, options);
+    const double spacing = 2 * roughingStepover(*t, options);
     const double layer = c.slabs.empty() ? 0 : c.slabs.front().top - c.slabs.front().z;
     const double volume = countLive(c, *t, spacing, every) * every * spacing * spacing / 2 * layer;
     if (volume > most) most = volume, tool = t;
@@ -457,10 +456,10 @@ RoughingOperation voxelRoughSetup(const Part& part, const Setup& setup, int setu
   c.slabs.clear();
   buildSlabs(c, left, *tool);
   Point2 lean = Point2::Zero();
-  countLive(c, *tool, 2 * stepoverOf(*tool, options), every, &lean);
+  countLive(c, *tool, 2 * roughingStepover(*tool, options), every, &lean);
   const Point2 tilt = lean.norm() > 1e-9 ? Point2(lean.normalized()) : Point2(0, 1);
   op.tool = tool->id;
-  const double spacing = stepoverOf(*tool, options);
+  const double spacing = roughingStepover(*tool, options);
   double tilt_sum = 0;
   for (std::size_t s = 0; s < c.slabs.size(); ++s) {
     RoughingLevel level;

@@ -361,7 +361,7 @@ CoverResult minimumCover(const CoverProblem& problem, const CoverOptions& option
     cover::CoreSolution solution = cover::greedyCoreCover(size.core, false);
     if (limit > 0) {
       cover::SearchStart from{static_cast<int>(solution.chosen.size()), 0.0, solution.chosen};
-      solution = cover::branchAndBound(size.core, from, false, limit);
+      solution = cover::branchAndBound(size.core, from, false, limit, options.keep_going);
     }
     size_proven = solution.complete;
     stats.search_nodes = solution.nodes;
@@ -372,7 +372,8 @@ CoverResult minimumCover(const CoverProblem& problem, const CoverOptions& option
 
   bool has_bonus = false;
   for (double w : problem.bonus_weight) has_bonus = has_bonus || w > 0;
-  if (!options.use_bonus || !has_bonus) {
+  result.stopped = options.keep_going && !options.keep_going();
+  if (!options.use_bonus || !has_bonus || result.stopped) {
     result.chosen = std::move(chosen);
     result.proven_minimal = size_proven;
     result.bonus_proven_best = size_proven && (options.use_bonus || !has_bonus);
@@ -403,7 +404,8 @@ CoverResult minimumCover(const CoverProblem& problem, const CoverOptions& option
     const double to_beat = bonusEarned(problem, chosen) - bonusEarned(problem, multi.state.chosen);
     if (target > 0) {
       const cover::SearchStart from{target, to_beat, {}, size_proven};
-      const cover::CoreSolution solution = cover::branchAndBound(multi.core, from, true, timeLeft(limit, start));
+      const cover::CoreSolution solution =
+          cover::branchAndBound(multi.core, from, true, timeLeft(limit, start), options.keep_going);
       stats.search_nodes += solution.nodes;
       if (solution.improved) chosen = withCore(multi.state.chosen, multi.core, solution.chosen);
       bonus_proven = solution.complete;
@@ -412,6 +414,7 @@ CoverResult minimumCover(const CoverProblem& problem, const CoverOptions& option
   if (!bonus_proven) chosen = cover::improveBonusBySwaps(distinct, bonus, problem.bonus_weight, std::move(chosen));
   stats.seconds_search += secondsSince(search_start);
 
+  result.stopped = options.keep_going && !options.keep_going();
   result.chosen = std::move(chosen);
   std::sort(result.chosen.begin(), result.chosen.end());
   result.proven_minimal = size_proven || bonus_proven;

@@ -117,9 +117,10 @@ double coreBonus(const CoreProblem& core, const std::vector<int>& chosen);
 CoreSolution greedyCoreCover(const CoreProblem& core, bool use_bonus);
 
 // Exact branch and bound for (fewest candidates, then most bonus when use_bonus), starting from `start` as the
-// incumbent. time_limit_s: wall clock for the search (infinite: none); when it runs out the incumbent is returned
-// incomplete.
-CoreSolution branchAndBound(const CoreProblem& core, const SearchStart& start, bool use_bonus, double time_limit_s);
+// incumbent. time_limit_s: wall clock for the search (infinite: none); when it runs out, or `keep_going` (when not
+// empty) says to stop, the incumbent is returned incomplete.
+CoreSolution branchAndBound(const CoreProblem& core, const SearchStart& start, bool use_bonus, double time_limit_s,
+                            const std::function<bool()>& keep_going = {});
 
 // ---- the Lagrangian relaxation (minimum_cover_bound.cpp) -----------------------------------------------------------
 

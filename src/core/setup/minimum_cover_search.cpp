@@ -30,8 +30,9 @@ constexpr double kBoundTolerance = 1e-6;
 
 class BranchAndBound {
  public:
-  BranchAndBound(const CoreProblem& core, bool use_bonus, double time_limit_s)
+  BranchAndBound(const CoreProblem& core, bool use_bonus, double time_limit_s, const std::function<bool()>& keep_going)
       : core_(core),
+        keep_going_(keep_going),
         use_bonus_(use_bonus),
         cw_(core.coverers.wordsPerRow()),
         ew_(core.covers.wordsPerRow()),
@@ -122,7 +123,8 @@ class BranchAndBound {
   Word* narrowed(int depth) { return narrowed_.data() + static_cast<std::size_t>(depth) * cw_; }
 
   bool pastDeadline() {
-    if (has_deadline_ && std::chrono::steady_clock::now() > deadline_) timed_out_ = true;
+    if ((has_deadline_ && std::chrono::steady_clock::now() > deadline_) || (keep_going_ && !keep_going_()))
+      timed_out_ = true;
     return timed_out_;
   }
   bool outOfTime() { return timed_out_ || ((nodes_ & 15) == 1 && pastDeadline()); }
@@ -567,6 +569,7 @@ class BranchAndBound {
   static constexpr double kNodeStep = 0.2;
 
   const CoreProblem& core_;
+  const std::function<bool()>& keep_going_;
   const bool use_bonus_;
   const int cw_, ew_, bw_;
   const bool lagrangian_;  // the size search bounds by the Lagrangian relaxation and narrows by reduced costs
@@ -599,8 +602,9 @@ class BranchAndBound {
 
 }  // namespace
 
-CoreSolution branchAndBound(const CoreProblem& core, const SearchStart& start, bool use_bonus, double time_limit_s) {
-  BranchAndBound search(core, use_bonus, time_limit_s);
+CoreSolution branchAndBound(const CoreProblem& core, const SearchStart& start, bool use_bonus, double time_limit_s,
+                            const std::function<bool()>& keep_going) {
+  BranchAndBound search(core, use_bonus, time_limit_s, keep_going);
   return search.run(start);
 }
 

@@ -85,12 +85,15 @@ class SwapSearch {
 
 }  // namespace
 
-CoverResult chooseSetups(const CoverProblem& problem, const std::vector<char>& special, const SetupOptions& options) {
+CoverResult chooseSetups(const CoverProblem& problem, const std::vector<char>& special, const SetupOptions& options,
+                         const std::function<bool()>& keep_going) {
   CoverOptions size_only;
   size_only.time_limit_s = options.time_limit_s;
   size_only.use_bonus = false;
+  size_only.keep_going = keep_going;
   const auto start = std::chrono::steady_clock::now();
   CoverResult smallest = minimumCover(problem, size_only);
+  if (smallest.stopped) return smallest;
   // The special directions' search has what the plain one left of the time limit (a tenth of it at least).
   const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   CoverOptions with_bonus = size_only;

@@ -1,6 +1,7 @@
 // Pieces shared by the setup sources (not part of the library's interface).
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "art2part/setup/setup_plan.h"
@@ -25,7 +26,9 @@ CoverProblem coverProblemOf(BitMatrix reach, const std::vector<SquareFace>& squa
 // minimum cover proves the size; a cover of special directions alone of that size with the most bonus is taken when
 // there is one, otherwise the plain cover improved by swapping single directions. proven_minimal refers to the size;
 // bonus_proven_best to the best bonus among covers of special directions only. stats: the plain search.
-CoverResult chooseSetups(const CoverProblem& problem, const std::vector<char>& special, const SetupOptions& options);
+// keep_going: as CoverOptions::keep_going, for both searches (the second is skipped once it says stop).
+CoverResult chooseSetups(const CoverProblem& problem, const std::vector<char>& special, const SetupOptions& options,
+                         const std::function<bool()>& keep_going = {});
 
 // Throws InputError when the visibility result does not belong to the part or an option is out of range.
 void checkSetupInputs(const Part& part, const VisibilityResult& visibility, const SetupOptions& options);

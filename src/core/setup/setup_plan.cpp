@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
+#include <string>
 
 #include "setup_internal.h"
 
@@ -152,6 +154,42 @@ std::vector<Setup> buildSetups(const Part& part, const DirectionSet& directions,
   return setups;
 }
 
+// The stage's reports: at each step, and during the cover search at most every kSetupReportSeconds (the search asks
+// every few nodes), the fraction the share of the time limit spent. Once the sink says stop, it stays stopped.
+class SetupProgress {
+ public:
+  static constexpr double kCoverStart = 0.1, kCoverEnd = 0.9;  // the search's part of the stage
+
+  SetupProgress(const ProgressSink& sink, double time_limit_s) : sink_(sink), time_limit_s_(time_limit_s) {}
+
+  bool step(double fraction, const std::string& message) {
+    last_ = std::chrono::steady_clock::now();
+    fraction_ = std::max(fraction_, fraction);
+    if (!stopped_) stopped_ = !reportProgress(sink_, "setups", fraction_, message);
+    return !stopped_;
+  }
+
+  void startSearch() { search_start_ = std::chrono::steady_clock::now(); }
+
+  // Asked by the search every few nodes.
+  bool searching() {
+    if (stopped_ || !sink_) return !stopped_;
+    if (secondsSince(last_) < kSetupReportSeconds) return true;
+    const double spent = secondsSince(search_start_);
+    const double share = time_limit_s_ > 0 && std::isfinite(time_limit_s_) ? std::min(1.0, spent / time_limit_s_) : 0;
+    return step(kCoverStart + share * (kCoverEnd - kCoverStart),
+                "minimum cover: searching the cyclic core, " + std::to_string(static_cast<int>(spent)) +
+                    " s of at most " + std::to_string(static_cast<int>(std::ceil(time_limit_s_))) + " s");
+  }
+
+ private:
+  const ProgressSink& sink_;
+  double time_limit_s_;
+  std::chrono::steady_clock::time_point last_, search_start_;
+  double fraction_ = 0;
+  bool stopped_ = false;
+};
+
 }  // namespace
 
 MachineMode parseMachineMode(const std::string& text) {
@@ -172,22 +210,36 @@ CoverProblem setupCoverProblem(const Part& part, const VisibilityResult& visibil
   return coverProblemOf(reach, squareFaces(part, visibility, faceTriangles(part), options), part);
 }
 
-SetupPlan planSetups(const Part& part, const VisibilityResult& visibility, const SetupOptions& options) {
+SetupPlan planSetups(const Part& part, const VisibilityResult& visibility, const SetupOptions& options,
+                     const ProgressSink& progress) {
   checkSetupInputs(part, visibility, options);
   SetupPlan plan;
   plan.mode = options.mode;
   plan.max_tilt_deg = options.mode == MachineMode::FiveAxis ? options.max_tilt_deg : 0.0;
+  SetupProgress reports(progress, options.time_limit_s);
+  const auto stop = [&plan] {
+    plan.cancelled = true;
+    return plan;
+  };
 
+  if (!reports.step(0, "what each direction reaches")) return stop();
   auto start = std::chrono::steady_clock::now();
   BitMatrix reach = reachMatrix(visibility, options);
   plan.seconds_reach = secondsSince(start);
 
+  if (!reports.step(0.05, "the cover problem: reach and square faces")) return stop();
   start = std::chrono::steady_clock::now();
   const std::vector<std::vector<int>> face_triangles = faceTriangles(part);
   const std::vector<SquareFace> square_faces = squareFaces(part, visibility, face_triangles, options);
   const CoverProblem problem = coverProblemOf(std::move(reach), square_faces, part);
-  CoverResult cover = chooseSetups(problem, visibility.directions.special, options);
+  if (!reports.step(SetupProgress::kCoverStart, "minimum cover: reduction to the cyclic core")) return stop();
+  reports.startSearch();
+  std::function<bool()> keep_going;  // none without a sink: the search runs as it always did
+  if (progress) keep_going = [&reports] { return reports.searching(); };
+  CoverResult cover = chooseSetups(problem, visibility.directions.special, options, keep_going);
   plan.seconds_cover = secondsSince(start);
+  if (cover.stopped || !reports.step(SetupProgress::kCoverEnd, "assigning faces and triangles to the setups"))
+    return stop();
   plan.proven_minimal = cover.proven_minimal;
   plan.bonus_proven_best = cover.bonus_proven_best;
   plan.cover = cover.stats;
@@ -202,6 +254,7 @@ SetupPlan planSetups(const Part& part, const VisibilityResult& visibility, const
   std::sort(plan.unmachinable_triangles.begin(), plan.unmachinable_triangles.end());
   plan.unmachinable_faces = facesOf(part, plan.unmachinable_triangles);
   plan.seconds_assign = secondsSince(start);
+  reports.step(1.0, "setups done");
   return plan;
 }
 

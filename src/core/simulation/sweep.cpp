@@ -2,8 +2,12 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
+#include <memory>
+#include <mutex>
 #include <thread>
 
 namespace art2part {
@@ -102,8 +106,15 @@ class Worker {
       : stock_(stock), extents_(extents), part_(part), part_extents_(part_extents), distance_(distance),
         options_(options), thread_(thread), threads_(threads) {}
 
-  void run(const Toolpath& path, const std::vector<const ToolSolid*>& tools) {
-    for (const StraightRun& run : straightRuns(path)) sweepRun(path, *tools[run.last], run);
+  // Every run of the path over this worker's rows; after each, the rows done go to `rows_done` and a raised `stop`
+  // ends it (both may be null).
+  void run(const Toolpath& path, const std::vector<const ToolSolid*>& tools, std::atomic<int>* rows_done = nullptr,
+           const std::atomic<bool>* stop = nullptr) {
+    for (const StraightRun& run : straightRuns(path)) {
+      if (stop && stop->load(std::memory_order_relaxed)) return;
+      sweepRun(path, *tools[run.last], run);
+      if (rows_done) rows_done->store(run.last + 1, std::memory_order_relaxed);
+    }
   }
 
   const std::map<int, MoveFinding>& findings() const { return findings_; }
@@ -295,11 +306,49 @@ std::vector<const ToolSolid*> toolOfEveryRow(const Toolpath& path, const std::ma
   return out;
 }
 
+// Every worker on a thread of its own while the calling thread reports the share of the rows the slowest has swept
+// and raises the stop when the sink says so. True when it was stopped.
+bool runReporting(std::vector<Worker>& workers, const Toolpath& path, const std::vector<const ToolSolid*>& row_tools,
+                  const ProgressSink& progress) {
+  const int n = static_cast<int>(workers.size());
+  std::unique_ptr<std::atomic<int>[]> rows_done(new std::atomic<int>[n]);
+  for (int t = 0; t < n; ++t) rows_done[t].store(0);
+  std::atomic<bool> stop{false};
+  std::mutex mutex;
+  std::condition_variable finished_changed;
+  int finished = 0;
+  std::vector<std::thread> running;
+  for (int t = 0; t < n; ++t)
+    running.emplace_back([&, t] {
+      workers[t].run(path, row_tools, &rows_done[t], &stop);
+      {
+        const std::lock_guard<std::mutex> lock(mutex);
+        ++finished;
+      }
+      finished_changed.notify_one();
+    });
+  const auto period = std::chrono::duration<double>(kSweepReportSeconds);
+  std::unique_lock<std::mutex> lock(mutex);
+  while (finished < n) {
+    if (finished_changed.wait_for(lock, period, [&] { return finished == n; })) break;
+    lock.unlock();
+    int done = static_cast<int>(path.size());
+    for (int t = 0; t < n; ++t) done = std::min(done, rows_done[t].load(std::memory_order_relaxed));
+    const bool go_on = reportProgress(progress, "verification", static_cast<double>(done) / path.size(),
+                                      "move " + std::to_string(done) + " of " + std::to_string(path.size()), done);
+    if (!go_on) stop.store(true);
+    lock.lock();
+  }
+  lock.unlock();
+  for (std::thread& t : running) t.join();
+  return stop.load();
+}
+
 }  // namespace
 
 SweepResult sweepToolpath(Stock& stock, const MeshDexels& part, const PartDistance& part_distance,
                           const Toolpath& path, const std::map<std::string, ToolSolid>& tools,
-                          const SweepOptions& options) {
+                          const SweepOptions& options, const ProgressSink& progress) {
   const auto start = std::chrono::steady_clock::now();
   const std::vector<const ToolSolid*> row_tools = toolOfEveryRow(path, tools);
   const int threads = options.threads > 0 ? options.threads
@@ -309,11 +358,15 @@ SweepResult sweepToolpath(Stock& stock, const MeshDexels& part, const PartDistan
   std::vector<Worker> workers;
   for (int t = 0; t < threads; ++t)
     workers.emplace_back(stock, extents, part, part_extents, part_distance, options, t, threads);
-  std::vector<std::thread> running;
-  for (int t = 1; t < threads; ++t) running.emplace_back([&, t] { workers[t].run(path, row_tools); });
-  workers[0].run(path, row_tools);
-  for (std::thread& t : running) t.join();
   SweepResult result;
+  if (progress) {
+    result.cancelled = runReporting(workers, path, row_tools, progress);
+  } else {
+    std::vector<std::thread> running;
+    for (int t = 1; t < threads; ++t) running.emplace_back([&, t] { workers[t].run(path, row_tools); });
+    workers[0].run(path, row_tools);
+    for (std::thread& t : running) t.join();
+  }
   for (const Worker& w : workers)
     for (const auto& [row, finding] : w.findings()) mergeFinding(result.findings[row], finding);
   result.poses = workers[0].poses();

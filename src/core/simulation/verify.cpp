@@ -15,6 +15,8 @@ namespace {
 
 constexpr double kAutomaticRays = 1.5e6;
 constexpr double kFinestAutomatic = 0.1;
+// The stage's progress: the lattice and the stock up to kSweepStart, the sweep up to kSweepEnd, then the leftover.
+constexpr double kSweepStart = 0.1, kSweepEnd = 0.9;
 
 Box unite(Box a, const Box& b) {
   if (!b.empty()) {
@@ -125,8 +127,9 @@ double automaticResolution(const Box& box) {
 
 VerificationReport verifyToolpath(const Mesh& part_mesh, const std::vector<int>& part_faces, const Toolpath& path,
                                   const std::vector<Tool>& tools, const VerifyOptions& options,
-                                  VerificationState* state) {
+                                  VerificationState* state, const ProgressSink& progress) {
   const auto start = std::chrono::steady_clock::now();
+  VerificationReport r;
   if (path.empty()) throw InputError("verify: the toolpath has no points");
   if (part_mesh.triangles.empty()) throw InputError("verify: the part has no triangles");
   // An open mesh bounds no solid: the part is its closure (solid_closure.h), as the roughing plans against.
@@ -139,12 +142,16 @@ VerificationReport verifyToolpath(const Mesh& part_mesh, const std::vector<int>&
   const Box box = options.stock_mesh ? unite(boundingBox(*options.stock_mesh), part_box)
                                      : stockBox(part_box, std::max(options.stock_margin, 0.0));
   const double resolution = options.resolution > 0.0 ? options.resolution : automaticResolution(box);
+  if (!reportProgress(progress, "verification", 0, "the part and the stock on a lattice of " +
+                                                       std::to_string(resolution) + " mm")) {
+    r.cancelled = true;
+    return r;
+  }
   const DexelLattice lattice = DexelLattice::over(box, resolution);
   const std::map<std::string, ToolSolid> solids = toolSolids(tools, options.tool_chord_mm);
   MeshDexels part_dexels(part, lattice);
   Stock stock = initialStock(options.stock_mesh, lattice, part_dexels);
 
-  VerificationReport r;
   r.resolution_mm = resolution;
   r.closed_open_mesh_edges = closure.boundary_edges;
   r.tolerance_mm = options.tolerance;
@@ -161,7 +168,14 @@ VerificationReport verifyToolpath(const Mesh& part_mesh, const std::vector<int>&
   sweep_options.step_fraction = options.step_fraction;
   sweep_options.cusp_step = options.cusp_step;
   sweep_options.threads = options.threads;
-  const SweepResult sweep = sweepToolpath(stock, part_dexels, distance, path, solids, sweep_options);
+  ProgressSink sweeping;  // the sweep's share of the moves, within the stage
+  if (progress)
+    sweeping = [&progress](const ProgressReport& p) {
+      return reportProgress(progress, p.stage, kSweepStart + (kSweepEnd - kSweepStart) * p.fraction, p.message, p.done);
+    };
+  const SweepResult sweep = sweepToolpath(stock, part_dexels, distance, path, solids, sweep_options, sweeping);
+  r.cancelled = sweep.cancelled ||
+                !reportProgress(progress, "verification", kSweepEnd, "measuring what is left of the stock");
   r.poses = sweep.poses;
   r.seconds_sweep = sweep.seconds;
   r.moves_per_second = r.moves / std::max(sweep.seconds, 1e-9);
@@ -170,6 +184,10 @@ VerificationReport verifyToolpath(const Mesh& part_mesh, const std::vector<int>&
 
   r.remaining_volume_mm3 = stock.volume();
   r.removed_volume_mm3 = r.stock_volume_mm3 - r.remaining_volume_mm3;
+  if (r.cancelled) {
+    r.seconds_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return r;
+  }
   LeftoverAnalysis leftover = analyseLeftover(stock, part_dexels, part_box, triangle_face);
   if (!part_faces.empty())
     r.face_checks = checkFaces(leftover, sweep.findings, triangle_face, distance, options.tolerance,
@@ -180,6 +198,7 @@ VerificationReport verifyToolpath(const Mesh& part_mesh, const std::vector<int>&
     state->part = std::move(part_dexels);
   }
   r.seconds_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  reportProgress(progress, "verification", 1.0, "verification done");
   return r;
 }
 
