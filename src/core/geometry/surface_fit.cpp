@@ -91,10 +91,12 @@ Surface dampedGaussNewton(const Surface& start, int max_iterations, StepFn step,
   return current;
 }
 
-double sumOfSquaredDistances(const std::vector<Vec3>& points, const CylinderSurface& cylinder) {
+// The cost a fit minimises: the sum over the points of distance(p)^2.
+template <class Distance>
+double sumOfSquares(const std::vector<Vec3>& points, Distance distance) {
   double sum = 0.0;
   for (const Vec3& p : points) {
-    const double d = distanceToCylinder(cylinder, p);
+    const double d = distance(p);
     sum += d * d;
   }
   return sum;
@@ -151,15 +153,6 @@ double signedConeDistance(const ConeSurface& c, const Vec3& p) {
   return a.across * std::cos(c.half_angle) - a.along * std::sin(c.half_angle);
 }
 
-double sumOfSquaredConeDistances(const std::vector<Vec3>& points, const ConeSurface& cone) {
-  double sum = 0.0;
-  for (const Vec3& p : points) {
-    const double residual = signedConeDistance(cone, p);
-    sum += residual * residual;
-  }
-  return sum;
-}
-
 // One damped Gauss-Newton step on apex (3), axis tilt (2, along u and w across the axis) and half angle (1). The
 // residual is across cos(a) - along sin(a); the rows below are its derivatives.
 ConeSurface coneStep(const std::vector<Vec3>& points, const ConeSurface& c, double damping) {
@@ -210,7 +203,10 @@ bool fitCone(const std::vector<Vec3>& points, const ConeSurface& guess, ConeSurf
   const ConeSurface fitted = dampedGaussNewton(
       guess, kMaxConeIterations,
       [&](const ConeSurface& c, double damping) { return coneStep(points, c, damping); },
-      [&](const ConeSurface& c) { return sumOfSquaredConeDistances(points, c); }, proper);
+      [&](const ConeSurface& c) {
+        return sumOfSquares(points, [&](const Vec3& p) { return signedConeDistance(c, p); });
+      },
+      proper);
   if (!proper(fitted) || !fitted.apex.allFinite()) return false;
   cone = fitted;
   return true;
@@ -273,7 +269,9 @@ bool fitCylinder(const std::vector<Vec3>& points, const Vec3& axis_guess, Cylind
         centreAxisPoint(points, next);
         return next;
       },
-      [&](const CylinderSurface& c) { return sumOfSquaredDistances(points, c); },
+      [&](const CylinderSurface& c) {
+        return sumOfSquares(points, [&](const Vec3& p) { return distanceToCylinder(c, p); });
+      },
       [](const CylinderSurface& c) { return c.radius > 0.0; });
   return true;
 }
