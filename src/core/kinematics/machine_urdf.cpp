@@ -165,7 +165,7 @@ std::string machineUrdf(const Machine& machine, const UrdfOptions& options) {
     }
   }
 
-  const FixturePose& fixture = fixtureForSetup(machine, options.setup);
+  const FixturePose& fixture = options.fixture ? *options.fixture : fixtureForSetup(machine, options.setup);
   w.link(options.part_frame);
   w.fixed(options.part_frame + "_fixture", part_parent, options.part_frame, fixture.origin * kMetre,
           rpyFromRotation(fixture.rotation));
