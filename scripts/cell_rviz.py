@@ -23,6 +23,8 @@ MM_PER_M = 1000.0
 # Vertical field of view of rviz's orbit camera (rad) and the margin around the part's box in the picture.
 RVIZ_FOV = math.pi / 4
 FRAMING_MARGIN = 1.3
+# A part whose box centre or diagonal differs by more than this share of its diagonal from the one in view re-frames it.
+REFRAME_SHARE = 0.01
 
 
 def package_file(*parts):
@@ -59,9 +61,13 @@ def loaded_part_box_m(msg):
     return box_framing(lo, hi)
 
 
-def same_framing(a, b, tolerance=1e-5):
-    """True when two (centre, diagonal) framings agree within `tolerance` metres (the CLI prints the box rounded)."""
-    return a is not None and b is not None and abs(a[1] - b[1]) <= tolerance and math.dist(a[0], b[0]) <= tolerance
+def same_framing(a, b):
+    """True when two (centre, diagonal) framings give the same view: centre and diagonal agree within REFRAME_SHARE of
+    the diagonal (the CLI's box and the part server's differ by rounding and tessellation)."""
+    if a is None or b is None:
+        return False
+    tolerance = REFRAME_SHARE * max(a[1], b[1])
+    return abs(a[1] - b[1]) <= tolerance and math.dist(a[0], b[0]) <= tolerance
 
 
 def framed_view(config, centre, diagonal):
