@@ -6,10 +6,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
 #include "art2part/kinematics/inverse_kinematics.h"
+#include "art2part/kinematics/machine_urdf.h"
 #include "art2part/post/fixture_placement.h"
 #include "art2part/post/machine_program.h"
 
@@ -264,4 +266,37 @@ TEST(FixturePlacement, PlanJsonBringsBackThePlacementForTheSameMachineAndReclamp
 
   plan["setups"][0]["fixture"]["rotation"] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 2}};
   EXPECT_THROW(clampingsFromPlanJson(plan, shifted), InputError);
+}
+
+// machine.launch plan:=DIR setup:=K: the URDF's part frame sits where plan.json says setup K sat on this machine.
+TEST(FixturePlacement, TheFixturePlanJsonRecordsForASetupPlacesTheUrdfPartFrame) {
+  const Machine vmc = machineNamed("vmc_3axis");
+  SetupPlacement placed;
+  placed.setup = 1;
+  placed.reachable = true;
+  placed.fixture.rotation = rotationFromRpy(Vec3(kPi, 0, kPi / 2));  // upside down, turned 90 deg
+  placed.fixture.origin = Vec3(100, 20, 50);
+  nlohmann::json plan = {{"setups", {nlohmann::json::object(), nlohmann::json::object()}}};
+  recordFixtures(plan, FixturePlan{"vmc_3axis", {placed}});
+  const nlohmann::json reread = nlohmann::json::parse(plan.dump());
+
+  const FixturePose fixture = recordedFixture(reread, 1, "vmc_3axis");
+  EXPECT_LT((fixture.origin - placed.fixture.origin).norm(), 1e-12);
+  EXPECT_TRUE(fixture.rotation.isApprox(placed.fixture.rotation, 1e-12));
+  EXPECT_THROW(recordedFixture(reread, 1, "trunnion_5axis"), InputError);  // placed for another machine
+  EXPECT_THROW(recordedFixture(reread, 0, "vmc_3axis"), InputError);       // not posted: no fixture
+  EXPECT_THROW(recordedFixture(reread, 2, "vmc_3axis"), InputError);       // no such setup
+
+  UrdfOptions options;
+  options.setup = 1;
+  options.fixture = fixture;
+  const std::string urdf = machineUrdf(vmc, options);
+  const std::size_t joint = urdf.find("<joint name=\"part_fixture\"");
+  ASSERT_NE(joint, std::string::npos);
+  const std::string origin = urdf.substr(joint, urdf.find("</joint>", joint) - joint);
+  EXPECT_NE(origin.find("xyz=\"0.1 0.02 0.05\""), std::string::npos) << origin;
+  Vec3 rpy;
+  ASSERT_EQ(std::sscanf(origin.c_str() + origin.find("rpy=\""), "rpy=\"%lf %lf %lf", &rpy.x(), &rpy.y(), &rpy.z()), 3);
+  EXPECT_TRUE(rotationFromRpy(rpy).isApprox(placed.fixture.rotation, 1e-9)) << origin;
+  EXPECT_EQ(machineUrdf(vmc, UrdfOptions{}).find("xyz=\"0.1 0.02 0.05\""), std::string::npos);
 }

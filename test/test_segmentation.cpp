@@ -6,6 +6,7 @@
 #include "art2part/geometry/part.h"
 #include "art2part/geometry/segmentation.h"
 #include "art2part/geometry/step_import.h"
+#include "art2part/geometry/surface_fit.h"
 #include "test_meshes.h"
 
 using namespace art2part;
@@ -124,4 +125,42 @@ TEST(Segmentation, RecoversTheBRepFacesOfPrismaticParts) {
     std::printf("%-28s matched %.4f  type agreement %.4f  segments %d  reference faces %d\n", name,
                 s.matched_fraction, s.type_agreement, s.segments, s.reference_faces);
   }
+}
+
+// The least-squares fits behind segmentation, from a start a rough normal estimate gives: they end on the surface
+// the points were sampled from.
+TEST(SurfaceFit, CylinderFromATiltedAxisGuessEndsOnTheSurface) {
+  const Vec3 axis = Vec3(0.2, -0.1, 1).normalized(), point(3, -2, 1);
+  const Vec3 u = axis.cross(Vec3::UnitX()).normalized(), w = axis.cross(u);
+  std::vector<Vec3> points;
+  for (int i = 0; i < 40; ++i)  // a 120 degree arc, 10 mm tall: a fillet-like patch, not a whole tube
+    points.push_back(point + 7.5 * (std::cos(i * 0.05) * u + std::sin(i * 0.05) * w) + (i % 5) * 2.5 * axis);
+  CylinderSurface cylinder;
+  ASSERT_TRUE(fitCylinder(points, (axis + Vec3(0.05, 0.05, 0)).normalized(), cylinder));
+  EXPECT_NEAR(cylinder.radius, 7.5, 1e-6);
+  EXPECT_NEAR(std::abs(cylinder.axis.dot(axis)), 1.0, 1e-9);
+  for (const Vec3& p : points) EXPECT_NEAR(distanceToCylinder(cylinder, p), 0.0, 1e-6);
+}
+
+TEST(SurfaceFit, ConeFromAPerturbedGuessEndsOnTheSurface) {
+  ConeSurface truth;
+  truth.apex = Vec3(1, 2, 3);
+  truth.axis = Vec3(0, 0.3, 1).normalized();
+  truth.half_angle = 0.5;
+  const Vec3 u = truth.axis.cross(Vec3::UnitX()).normalized(), w = truth.axis.cross(u);
+  std::vector<Vec3> points;
+  for (int i = 0; i < 60; ++i) {
+    const double along = 4 + (i % 6), around = i * 0.1;
+    points.push_back(truth.apex + along * truth.axis +
+                     along * std::tan(truth.half_angle) * (std::cos(around) * u + std::sin(around) * w));
+  }
+  ConeSurface guess = truth;
+  guess.apex += Vec3(0.3, -0.2, 0.4);
+  guess.axis = (truth.axis + Vec3(0.05, 0, 0)).normalized();
+  guess.half_angle = 0.45;
+  ConeSurface cone;
+  ASSERT_TRUE(fitCone(points, guess, cone));
+  EXPECT_NEAR(cone.half_angle, truth.half_angle, 1e-6);
+  EXPECT_NEAR((cone.apex - truth.apex).norm(), 0.0, 1e-5);
+  for (const Vec3& p : points) EXPECT_NEAR(distanceToCone(cone, p), 0.0, 1e-6);
 }

@@ -40,8 +40,9 @@ const CommandUsage kCommands[] = {
      "             [--rate HZ] [--name NAME]   G-code for LinuxCNC from DIR/toolpaths.csv and tools.json: program.ngc,\n"
      "             setup_<k>.ngc, tool.tbl, tool_rs274.tbl (inches) and trajectory.csv (time, joints in mm and deg)\n"},
     {"urdf",
-     "  urdf --machine FILE [--setup K] [--out FILE.urdf]   the machine's URDF (m, rad) with the part frame at the\n"
-     "             fixture of setup K, for robot_state_publisher\n"},
+     "  urdf --machine FILE [--setup K] [--plan DIR] [--out FILE.urdf]   the machine's URDF (m, rad) with the part\n"
+     "             frame at the fixture of setup K (with --plan: the one DIR/plan.json records), for\n"
+     "             robot_state_publisher\n"},
 };
 
 std::string usage() {

@@ -248,21 +248,6 @@ class ControllerBridge {
 }  // namespace art2part
 
 int main(int argc, char** argv) {
-  ros::init(argc, argv, "controller_bridge");
-  ros::NodeHandle nh, pnh("~");
-  std::string machine_file;
-  if (!pnh.getParam("machine", machine_file)) {
-    ROS_FATAL("controller_bridge: set ~machine to a machine file (config/machines/*.yaml)");
-    return 1;
-  }
-  try {
-    art2part::ControllerBridge bridge(nh, pnh, art2part::loadMachine(machine_file));
-    ros::AsyncSpinner spinner(3);  // joint_states and the action client's callbacks while run_program waits
-    spinner.start();
-    ros::waitForShutdown();
-  } catch (const std::exception& e) {
-    ROS_FATAL("controller_bridge: %s", e.what());
-    return 1;
-  }
-  return 0;
+  // 3 threads: joint_states and the action client's callbacks while run_program waits.
+  return art2part::runMachineNode<art2part::ControllerBridge>(argc, argv, "controller_bridge", 3);
 }

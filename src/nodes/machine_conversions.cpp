@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <sstream>
 #include <utility>
 
+#include "art2part/common/number_text.h"
 #include "art2part/common/request_limits.h"
 
 namespace art2part {
@@ -15,12 +15,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kMetre = 1e-3;  // per mm
 
-std::string fmt(double value) {
-  std::ostringstream out;
-  out.precision(10);
-  out << value;
-  return out.str();
-}
+std::string fmt(double value) { return numberText(value, 10); }
 
 // A core value in the YAML's units with the unit: "12.5 mm", "-104.2 deg".
 std::string yamlValue(const Joint& joint, double core_value, const char* per = "") {

@@ -5,6 +5,7 @@
 // machine's joint letters (rosJointName, as the URDF of machine_urdf.h).
 #pragma once
 
+#include <ros/ros.h>
 #include <sensor_msgs/JointState.h>
 #include <trajectory_msgs/JointTrajectory.h>
 
@@ -66,5 +67,29 @@ TrajectoryCheck checkTrajectoryGoal(const Machine& machine, const trajectory_msg
 // from `start` (ROS units, msg joint order) at rest; after the last, the last point. Velocities likewise.
 void interpolateTrajectory(const trajectory_msgs::JointTrajectory& msg, const std::vector<double>& start, double t,
                            std::vector<double>* positions, std::vector<double>* velocities);
+
+// A node that drives one machine: ros::init as `name`, the machine from the file in its ~machine parameter, a
+// Node(nh, pnh, machine) serving with `threads` spinner threads until shutdown. Returns main's exit code; a missing
+// parameter or a bad machine file is one ROS_FATAL line and 1.
+template <class Node>
+int runMachineNode(int argc, char** argv, const char* name, int threads) {
+  ros::init(argc, argv, name);
+  ros::NodeHandle nh, pnh("~");
+  std::string machine_file;
+  if (!pnh.getParam("machine", machine_file)) {
+    ROS_FATAL("%s: set ~machine to a machine file (config/machines/*.yaml)", name);
+    return 1;
+  }
+  try {
+    Node node(nh, pnh, loadMachine(machine_file));
+    ros::AsyncSpinner spinner(threads);
+    spinner.start();
+    ros::waitForShutdown();
+  } catch (const std::exception& e) {
+    ROS_FATAL("%s: %s", name, e.what());
+    return 1;
+  }
+  return 0;
+}
 
 }  // namespace art2part

@@ -231,21 +231,6 @@ class SimulatedController {
 }  // namespace art2part
 
 int main(int argc, char** argv) {
-  ros::init(argc, argv, "simulated_controller");
-  ros::NodeHandle nh, pnh("~");
-  std::string machine_file;
-  if (!pnh.getParam("machine", machine_file)) {
-    ROS_FATAL("simulated_controller: set ~machine to a machine file (config/machines/*.yaml)");
-    return 1;
-  }
-  try {
-    art2part::SimulatedController controller(nh, pnh, art2part::loadMachine(machine_file));
-    ros::AsyncSpinner spinner(2);  // joint_states keep coming while a goal runs
-    spinner.start();
-    ros::waitForShutdown();
-  } catch (const std::exception& e) {
-    ROS_FATAL("simulated_controller: %s", e.what());
-    return 1;
-  }
-  return 0;
+  // 2 threads: joint_states keep coming while a goal runs.
+  return art2part::runMachineNode<art2part::SimulatedController>(argc, argv, "simulated_controller", 2);
 }

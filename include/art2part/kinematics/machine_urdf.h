@@ -24,6 +24,7 @@
 // URDF has no acceleration limit. Visuals are simple boxes and cylinders sized from the travel.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "art2part/kinematics/machine.h"
@@ -33,6 +34,7 @@ namespace art2part {
 struct UrdfOptions {
   int setup = -1;                  // the fixture of this setup (toolpaths.csv index); -1: the machine's default
   std::string part_frame = "part";  // the name of the part's link
+  std::optional<FixturePose> fixture;  // the part's pose on the table (a plan's); unset: the machine file's of `setup`
 };
 
 // The URDF text (XML) of the machine, robot name = machine.name.

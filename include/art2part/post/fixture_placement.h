@@ -83,6 +83,11 @@ nlohmann::json fixtureJson(const std::string& machine, const SetupPlacement& pla
 // Adds each placement to plan.json's setups[setup].fixture (setups the array lacks are skipped).
 void recordFixtures(nlohmann::json& plan_json, const FixturePlan& plan);
 
+// The fixture plan.json records for one setup (setups[setup].fixture: origin_mm and rotation), for a machine named
+// `machine`: where the part sat on that machine's table when the plan was posted. Throws InputError for a setup the
+// plan lacks, a setup without a fixture, a fixture recorded for another machine, or a malformed one.
+FixturePose recordedFixture(const nlohmann::json& plan_json, int setup, const std::string& machine);
+
 // The clampings a plan folder's plan.json gives for `machine`, by setup index: a fixture recorded for a machine of the
 // same name is tried first exactly as recorded (so the bridge runs the plan where `plan` posted it), then the search
 // goes on from it; otherwise each setup is clamped facing up from its recorded frame and anchor (or, in a plan.json

@@ -102,9 +102,9 @@ class JointTrajectory {
 
  private:
   const TrajectoryPiece* pieceAt(double t, double& tau) const;  // nullptr when there is no motion
-  // Position, velocity and acceleration at local time tau of a piece.
-  void evaluate(const TrajectoryPiece& piece, double tau, Eigen::VectorXd* q, Eigen::VectorXd* v,
-                Eigen::VectorXd* a) const;
+  // The joints' time derivative of the given order (0 position, 1 velocity, 2 acceleration) at time t, clamped to
+  // the motion; before any motion the first position and zero rates.
+  std::vector<double> derivativeAt(double t, int order) const;
 
   std::vector<std::string> joint_names_;
   std::vector<bool> rotary_;

@@ -64,9 +64,18 @@ class OffscreenContext {
   std::vector<unsigned char> default_buffer_;
 };
 
-// Shader helpers. Both need a current context and throw std::runtime_error
+// One stage of a shader program: its type (GL_VERTEX_SHADER, GL_GEOMETRY_SHADER, ...) and GLSL source.
+struct ShaderStage {
+  GLenum type = GL_VERTEX_SHADER;  // the pipeline stage
+  std::string source;              // GLSL text
+};
+
+// Shader helpers. They need a current context and throw std::runtime_error
 // carrying the GLSL info log. `name` only labels the error message.
 GLuint compileShader(GLenum type, const std::string& source, const std::string& name);
+// A program of the given stages, compiled and linked.
+GLuint linkProgram(const std::vector<ShaderStage>& stages, const std::string& name);
+// A program of a vertex and a fragment shader.
 GLuint linkProgram(const std::string& vertex_source, const std::string& fragment_source,
                    const std::string& name);
 

@@ -3,8 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
+#include "art2part/common/number_text.h"
 #include "art2part/finishing/admissible.h"
 #include "art2part/visibility/cones.h"
 
@@ -47,12 +47,7 @@ double leastDot(const AdmissibleSet& surface, const Vec3& d) {
   return least;
 }
 
-std::string mm(double v) {
-  std::ostringstream s;
-  s.precision(v < 10 ? 2 : 3);
-  s << v;
-  return s.str() + " mm";
-}
+std::string mm(double v) { return numberText(v, v < 10 ? 2 : 3) + " mm"; }
 
 }  // namespace
 

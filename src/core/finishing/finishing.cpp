@@ -8,6 +8,7 @@
 #include <map>
 #include <sstream>
 
+#include "art2part/common/number_text.h"
 #include "art2part/finishing/admissible.h"
 #include "art2part/finishing/face_assignment.h"
 #include "art2part/finishing/planar_finishing.h"
@@ -117,12 +118,7 @@ struct Context {
   const std::vector<std::vector<int>>& triangles;
 };
 
-std::string number(double v, int precision = 3) {
-  std::ostringstream s;
-  s.precision(precision);
-  s << v;
-  return s.str();
-}
+std::string number(double v) { return numberText(v, 3); }
 
 void estimateTime(FinishingOperation& op, const ToolLibrary& library, const FinishingOptions& options) {
   op.feed_mm = toolpathLength(op.path, MoveKind::Feed);

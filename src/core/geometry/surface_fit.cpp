@@ -1,6 +1,7 @@
 #include "art2part/geometry/surface_fit.h"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 
 namespace art2part {
@@ -21,16 +22,81 @@ void perpendicularBasis(const Vec3& axis, Vec3& u, Vec3& w) {
   w = axis.cross(u);
 }
 
+// A point seen from an axis (cylinder or cone): how far along it and across it, and which way across.
+struct AxialPosition {
+  Vec3 offset;    // the point minus the axis origin
+  double along;   // signed distance along the axis from its origin
+  double across;  // distance from the axis line
+  Vec3 outwards;  // unit, from the axis towards the point; zero on the axis
+};
+
+AxialPosition axialPosition(const Vec3& p, const Vec3& origin, const Vec3& axis) {
+  AxialPosition a;
+  a.offset = p - origin;
+  a.along = a.offset.dot(axis);
+  const Vec3 radial = a.offset - a.along * axis;
+  a.across = radial.norm();
+  a.outwards = a.across > 0.0 ? Vec3(radial / a.across) : Vec3::Zero();
+  return a;
+}
+
 Vec3 centroidOf(const std::vector<Vec3>& points) {
   Vec3 sum = Vec3::Zero();
   for (const Vec3& p : points) sum += p;
   return sum / static_cast<double>(points.size());
 }
 
-double sumOfSquaredDistances(const std::vector<Vec3>& points, const CylinderSurface& cylinder) {
+// The damped normal equations of one Gauss-Newton step over N parameters: add a row (the residual's derivatives)
+// and its residual per point, then solve with Levenberg-Marquardt damping of the diagonal.
+template <int N>
+struct NormalEquations {
+  using Vector = Eigen::Matrix<double, N, 1>;
+  Eigen::Matrix<double, N, N> matrix = Eigen::Matrix<double, N, N>::Zero();  // sum of row row^T
+  Vector gradient = Vector::Zero();                                          // sum of row * residual
+
+  void add(const Vector& row, double residual) {
+    matrix += row * row.transpose();
+    gradient += row * residual;
+  }
+
+  Vector step(double damping) const {
+    Eigen::Matrix<double, N, N> damped = matrix;
+    for (int i = 0; i < N; ++i) damped(i, i) *= 1.0 + damping;
+    return damped.ldlt().solve(-gradient);
+  }
+};
+
+// Damped Gauss-Newton (Levenberg-Marquardt) from `start`: a step that lowers the cost and gives a proper surface
+// (`proper`) is taken and the damping relaxed; otherwise the damping grows tenfold, towards gradient descent, until it
+// passes 1e6. Stops when a step gains less than 1e-8 of the cost or after max_iterations.
+template <class Surface, class StepFn, class CostFn, class ProperFn>
+Surface dampedGaussNewton(const Surface& start, int max_iterations, StepFn step, CostFn cost_of, ProperFn proper) {
+  Surface current = start;
+  double cost = cost_of(current);
+  double damping = 1e-6;
+  for (int iteration = 0; iteration < max_iterations && cost > 0.0; ++iteration) {
+    const Surface next = step(current, damping);
+    const double next_cost = cost_of(next);
+    if (!(next_cost < cost) || !proper(next)) {
+      damping *= 10.0;
+      if (damping > 1e6) break;
+      continue;
+    }
+    const bool converged = cost - next_cost <= 1e-8 * cost;
+    current = next;
+    cost = next_cost;
+    damping = std::max(damping * 0.1, 1e-9);
+    if (converged) break;
+  }
+  return current;
+}
+
+// The cost a fit minimises: the sum over the points of distance(p)^2.
+template <class Distance>
+double sumOfSquares(const std::vector<Vec3>& points, Distance distance) {
   double sum = 0.0;
   for (const Vec3& p : points) {
-    const double d = distanceToCylinder(cylinder, p);
+    const double d = distance(p);
     sum += d * d;
   }
   return sum;
@@ -58,23 +124,16 @@ bool initialCylinder(const std::vector<Vec3>& points, const Vec3& axis, Cylinder
 CylinderSurface gaussNewtonStep(const std::vector<Vec3>& points, const CylinderSurface& c, double damping) {
   Vec3 u, w;
   perpendicularBasis(c.axis, u, w);
-  Eigen::Matrix<double, 5, 5> normal_matrix = Eigen::Matrix<double, 5, 5>::Zero();
-  Eigen::Matrix<double, 5, 1> gradient = Eigen::Matrix<double, 5, 1>::Zero();
+  NormalEquations<5> equations;
   for (const Vec3& p : points) {
-    const Vec3 d = p - c.point;
-    const double along = d.dot(c.axis);
-    const Vec3 radial = d - along * c.axis;
-    const double distance = radial.norm();
-    if (distance <= 0.0) continue;
-    const Vec3 direction = radial / distance;
-    const double du = direction.dot(u), dw = direction.dot(w);
+    const AxialPosition a = axialPosition(p, c.point, c.axis);
+    if (a.across <= 0.0) continue;
+    const double du = a.outwards.dot(u), dw = a.outwards.dot(w);
     Eigen::Matrix<double, 5, 1> row;
-    row << -du, -dw, -along * du, -along * dw, -1.0;
-    normal_matrix += row * row.transpose();
-    gradient += row * (distance - c.radius);
+    row << -du, -dw, -a.along * du, -a.along * dw, -1.0;
+    equations.add(row, a.across - c.radius);
   }
-  for (int i = 0; i < 5; ++i) normal_matrix(i, i) *= 1.0 + damping;
-  const Eigen::Matrix<double, 5, 1> step = normal_matrix.ldlt().solve(-gradient);
+  const Eigen::Matrix<double, 5, 1> step = equations.step(damping);
   CylinderSurface next = c;
   next.point = c.point + step(0) * u + step(1) * w;
   next.axis = (c.axis + step(2) * u + step(3) * w).normalized();
@@ -90,22 +149,8 @@ void centreAxisPoint(const std::vector<Vec3>& points, CylinderSurface& c) {
 
 // Signed distance from the cone (positive outside, away from the axis), along the normal of the nearest ruling.
 double signedConeDistance(const ConeSurface& c, const Vec3& p) {
-  const Vec3 d = p - c.apex;
-  const double along = d.dot(c.axis);
-  const double across = (d - along * c.axis).norm();
-  return across * std::cos(c.half_angle) - along * std::sin(c.half_angle);
-}
-
-double sumOfSquaredConeDistances(const std::vector<Vec3>& points, const ConeSurface& cone) {
-  const double cos_a = std::cos(cone.half_angle), sin_a = std::sin(cone.half_angle);
-  double sum = 0.0;
-  for (const Vec3& p : points) {
-    const Vec3 d = p - cone.apex;
-    const double along = d.dot(cone.axis);
-    const double residual = (d - along * cone.axis).norm() * cos_a - along * sin_a;
-    sum += residual * residual;
-  }
-  return sum;
+  const AxialPosition a = axialPosition(p, c.apex, c.axis);
+  return a.across * std::cos(c.half_angle) - a.along * std::sin(c.half_angle);
 }
 
 // One damped Gauss-Newton step on apex (3), axis tilt (2, along u and w across the axis) and half angle (1). The
@@ -114,26 +159,19 @@ ConeSurface coneStep(const std::vector<Vec3>& points, const ConeSurface& c, doub
   Vec3 u, w;
   perpendicularBasis(c.axis, u, w);
   const double cos_a = std::cos(c.half_angle), sin_a = std::sin(c.half_angle);
-  Eigen::Matrix<double, 6, 6> normal_matrix = Eigen::Matrix<double, 6, 6>::Zero();
-  Eigen::Matrix<double, 6, 1> gradient = Eigen::Matrix<double, 6, 1>::Zero();
+  NormalEquations<6> equations;
   for (const Vec3& p : points) {
-    const Vec3 d = p - c.apex;
-    const double along = d.dot(c.axis);
-    const Vec3 radial = d - along * c.axis;
-    const double across = radial.norm();
-    if (across <= 0.0) continue;
-    const Vec3 outwards = radial / across;
-    const Vec3 by_apex = -cos_a * outwards + sin_a * c.axis;
+    const AxialPosition a = axialPosition(p, c.apex, c.axis);
+    if (a.across <= 0.0) continue;
+    const Vec3 by_apex = -cos_a * a.outwards + sin_a * c.axis;
     Eigen::Matrix<double, 6, 1> row;
     row << by_apex.x(), by_apex.y(), by_apex.z(),
-        -cos_a * along * outwards.dot(u) - sin_a * d.dot(u),
-        -cos_a * along * outwards.dot(w) - sin_a * d.dot(w),
-        -across * sin_a - along * cos_a;
-    normal_matrix += row * row.transpose();
-    gradient += row * (across * cos_a - along * sin_a);
+        -cos_a * a.along * a.outwards.dot(u) - sin_a * a.offset.dot(u),
+        -cos_a * a.along * a.outwards.dot(w) - sin_a * a.offset.dot(w),
+        -a.across * sin_a - a.along * cos_a;
+    equations.add(row, a.across * cos_a - a.along * sin_a);
   }
-  for (int i = 0; i < 6; ++i) normal_matrix(i, i) *= 1.0 + damping;
-  const Eigen::Matrix<double, 6, 1> step = normal_matrix.ldlt().solve(-gradient);
+  const Eigen::Matrix<double, 6, 1> step = equations.step(damping);
   ConeSurface next = c;
   next.apex = c.apex + step.head<3>();
   next.axis = (c.axis + step(3) * u + step(4) * w).normalized();
@@ -161,32 +199,21 @@ bool nearestPointToLines(const std::vector<Vec3>& points, const std::vector<Vec3
 
 bool fitCone(const std::vector<Vec3>& points, const ConeSurface& guess, ConeSurface& cone) {
   if (points.size() < 6) return false;
-  ConeSurface current = guess;
-  double cost = sumOfSquaredConeDistances(points, current);
-  double damping = 1e-6;
-  for (int iteration = 0; iteration < kMaxConeIterations && cost > 0.0; ++iteration) {
-    const ConeSurface next = coneStep(points, current, damping);
-    const double next_cost = sumOfSquaredConeDistances(points, next);
-    if (!(next_cost < cost) || !(next.half_angle > 0.0) || !(next.half_angle < kHalfPi)) {
-      damping *= 10.0;
-      if (damping > 1e6) break;
-      continue;
-    }
-    const bool converged = cost - next_cost <= 1e-8 * cost;
-    current = next;
-    cost = next_cost;
-    damping = std::max(damping * 0.1, 1e-9);
-    if (converged) break;
-  }
-  if (!(current.half_angle > 0.0 && current.half_angle < kHalfPi) || !current.apex.allFinite()) return false;
-  cone = current;
+  const auto proper = [](const ConeSurface& c) { return c.half_angle > 0.0 && c.half_angle < kHalfPi; };
+  const ConeSurface fitted = dampedGaussNewton(
+      guess, kMaxConeIterations,
+      [&](const ConeSurface& c, double damping) { return coneStep(points, c, damping); },
+      [&](const ConeSurface& c) {
+        return sumOfSquares(points, [&](const Vec3& p) { return signedConeDistance(c, p); });
+      },
+      proper);
+  if (!proper(fitted) || !fitted.apex.allFinite()) return false;
+  cone = fitted;
   return true;
 }
 
 double distanceToCylinder(const CylinderSurface& cylinder, const Vec3& p) {
-  const Vec3 d = p - cylinder.point;
-  const Vec3 radial = d - cylinder.axis * cylinder.axis.dot(d);
-  return std::abs(radial.norm() - cylinder.radius);
+  return std::abs(axialPosition(p, cylinder.point, cylinder.axis).across - cylinder.radius);
 }
 
 Vec3 leastAlignedDirection(const std::vector<Vec3>& normals, const std::vector<double>& weights) {
@@ -233,26 +260,19 @@ bool fitCylinderAroundAxis(const std::vector<Vec3>& points, const Vec3& axis, Cy
 
 bool fitCylinder(const std::vector<Vec3>& points, const Vec3& axis_guess, CylinderSurface& cylinder) {
   if (points.size() < 5) return false;
-  CylinderSurface current;
-  if (!fitCylinderAroundAxis(points, axis_guess, current)) return false;
-  double cost = sumOfSquaredDistances(points, current);
-  double damping = 1e-6;
-  for (int iteration = 0; iteration < kMaxCylinderIterations && cost > 0.0; ++iteration) {
-    CylinderSurface next = gaussNewtonStep(points, current, damping);
-    centreAxisPoint(points, next);
-    const double next_cost = sumOfSquaredDistances(points, next);
-    if (!(next_cost < cost) || !(next.radius > 0.0)) {
-      damping *= 10.0;  // overshoot: lean towards gradient descent
-      if (damping > 1e6) break;
-      continue;
-    }
-    const bool converged = cost - next_cost <= 1e-8 * cost;
-    current = next;
-    cost = next_cost;
-    damping = std::max(damping * 0.1, 1e-9);
-    if (converged) break;
-  }
-  cylinder = current;
+  CylinderSurface start;
+  if (!fitCylinderAroundAxis(points, axis_guess, start)) return false;
+  cylinder = dampedGaussNewton(
+      start, kMaxCylinderIterations,
+      [&](const CylinderSurface& c, double damping) {
+        CylinderSurface next = gaussNewtonStep(points, c, damping);
+        centreAxisPoint(points, next);
+        return next;
+      },
+      [&](const CylinderSurface& c) {
+        return sumOfSquares(points, [&](const Vec3& p) { return distanceToCylinder(c, p); });
+      },
+      [](const CylinderSurface& c) { return c.radius > 0.0; });
   return true;
 }
 

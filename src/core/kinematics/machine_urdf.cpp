@@ -5,6 +5,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "art2part/common/number_text.h"
+
 namespace art2part {
 
 namespace {
@@ -12,12 +14,8 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kMetre = 1e-3;  // per mm
 
-std::string num(double value) {
-  std::ostringstream out;
-  out.precision(12);
-  out << (std::abs(value) < 1e-15 ? 0.0 : value);
-  return out.str();
-}
+// 12 significant digits; rounding noise of a zero (a sine of pi) printed as 0.
+std::string num(double value) { return numberText(std::abs(value) < 1e-15 ? 0.0 : value, 12); }
 
 std::string vec(const Vec3& v) { return num(v.x()) + " " + num(v.y()) + " " + num(v.z()); }
 
@@ -167,7 +165,7 @@ std::string machineUrdf(const Machine& machine, const UrdfOptions& options) {
     }
   }
 
-  const FixturePose& fixture = fixtureForSetup(machine, options.setup);
+  const FixturePose& fixture = options.fixture ? *options.fixture : fixtureForSetup(machine, options.setup);
   w.link(options.part_frame);
   w.fixed(options.part_frame + "_fixture", part_parent, options.part_frame, fixture.origin * kMetre,
           rpyFromRotation(fixture.rotation));

@@ -272,6 +272,24 @@ void recordFixtures(nlohmann::json& plan_json, const FixturePlan& plan) {
       setups[p.setup]["fixture"] = fixtureJson(plan.machine, p);
 }
 
+FixturePose recordedFixture(const nlohmann::json& plan_json, int setup, const std::string& machine) {
+  const nlohmann::json& setups = member(plan_json, "setups", "plan.json");
+  const int count = setups.is_array() ? static_cast<int>(setups.size()) : 0;
+  if (setup < 0 || setup >= count)
+    throw InputError("plan.json has no setup " + std::to_string(setup) + " (it has " + std::to_string(count) + ")");
+  const std::string where = "setups[" + std::to_string(setup) + "].fixture";
+  if (!setups[setup].is_object() || !setups[setup].contains("fixture"))
+    throw InputError("plan.json: setup " + std::to_string(setup) + " has no fixture (the plan was not posted)");
+  const nlohmann::json& f = setups[setup]["fixture"];
+  const nlohmann::json& name = member(f, "machine", where);
+  if (!name.is_string() || name.get<std::string>() != machine)
+    throw InputError("plan.json: " + where + " is for machine " + name.dump() + ", not " + machine);
+  FixturePose fixture;
+  fixture.rotation = rotationFrom(f, where);
+  fixture.origin = vectorFrom(f, "origin_mm", where);
+  return fixture;
+}
+
 std::map<int, Clamping> clampingsFromPlanJson(const nlohmann::json& plan_json, const Machine& machine,
                                               double stock_margin) {
   std::map<int, Clamping> clampings;

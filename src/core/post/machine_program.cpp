@@ -14,9 +14,8 @@ namespace art2part {
 using namespace post_detail;
 
 PostMode parsePostMode(const std::string& text) {
-  if (text == "auto") return PostMode::Auto;
-  if (text == "3+2") return PostMode::ThreePlusTwo;
-  if (text == "5axis") return PostMode::FiveAxis;
+  for (PostMode mode : {PostMode::Auto, PostMode::ThreePlusTwo, PostMode::FiveAxis})
+    if (text == postModeName(mode)) return mode;
   throw InputError("unknown post mode '" + text + "' (expected 3+2, 5axis or auto)");
 }
 

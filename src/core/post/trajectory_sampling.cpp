@@ -71,50 +71,29 @@ const TrajectoryPiece* JointTrajectory::pieceAt(double t, double& tau) const {
   return &piece;
 }
 
-void JointTrajectory::evaluate(const TrajectoryPiece& piece, double tau, Eigen::VectorXd* q, Eigen::VectorXd* v,
-                               Eigen::VectorXd* a) const {
-  if (piece.blend) {
-    const int k = piece.segment;
+std::vector<double> JointTrajectory::derivativeAt(double t, int order) const {
+  double tau = 0;
+  const TrajectoryPiece* piece = pieceAt(t, tau);
+  if (!piece) return order == 0 ? toStd(first_) : std::vector<double>(first_.size(), 0.0);
+  if (piece->blend) {  // a parabola in joint space from the segment before into this one
+    const int k = piece->segment;
     const Eigen::VectorXd& before = segments_[k - 1].direction;
     const Eigen::VectorXd turn = (segments_[k].direction - before) / (2 * corner_beta_[k]);
-    if (q) *q = segments_[k].start + (piece.s0 + piece.sigma0 * tau) * before + turn * (0.5 * tau * tau);
-    if (v) *v = piece.sigma0 * before + turn * tau;
-    if (a) *a = turn;
-    return;
+    if (order == 0)
+      return toStd(segments_[k].start + (piece->s0 + piece->sigma0 * tau) * before + turn * (0.5 * tau * tau));
+    if (order == 1) return toStd(piece->sigma0 * before + turn * tau);
+    return toStd(turn);
   }
-  const TrajectorySegment& segment = segments_[piece.segment];
-  const double s = piece.s0 + piece.sigma0 * tau + 0.5 * piece.sigma_dot * tau * tau;
-  if (q) *q = segment.start + s * segment.direction;
-  if (v) *v = (piece.sigma0 + piece.sigma_dot * tau) * segment.direction;
-  if (a) *a = piece.sigma_dot * segment.direction;
+  const TrajectorySegment& segment = segments_[piece->segment];
+  const double s = piece->s0 + piece->sigma0 * tau + 0.5 * piece->sigma_dot * tau * tau;
+  if (order == 0) return toStd(segment.start + s * segment.direction);
+  if (order == 1) return toStd((piece->sigma0 + piece->sigma_dot * tau) * segment.direction);
+  return toStd(piece->sigma_dot * segment.direction);
 }
 
-std::vector<double> JointTrajectory::positionAt(double t) const {
-  double tau = 0;
-  const TrajectoryPiece* piece = pieceAt(t, tau);
-  if (!piece) return toStd(first_);
-  Eigen::VectorXd q;
-  evaluate(*piece, tau, &q, nullptr, nullptr);
-  return toStd(q);
-}
-
-std::vector<double> JointTrajectory::velocityAt(double t) const {
-  double tau = 0;
-  const TrajectoryPiece* piece = pieceAt(t, tau);
-  if (!piece) return std::vector<double>(first_.size(), 0.0);
-  Eigen::VectorXd v;
-  evaluate(*piece, tau, nullptr, &v, nullptr);
-  return toStd(v);
-}
-
-std::vector<double> JointTrajectory::accelerationAt(double t) const {
-  double tau = 0;
-  const TrajectoryPiece* piece = pieceAt(t, tau);
-  if (!piece) return std::vector<double>(first_.size(), 0.0);
-  Eigen::VectorXd a;
-  evaluate(*piece, tau, nullptr, nullptr, &a);
-  return toStd(a);
-}
+std::vector<double> JointTrajectory::positionAt(double t) const { return derivativeAt(t, 0); }
+std::vector<double> JointTrajectory::velocityAt(double t) const { return derivativeAt(t, 1); }
+std::vector<double> JointTrajectory::accelerationAt(double t) const { return derivativeAt(t, 2); }
 
 PathPoint JointTrajectory::pathPointAt(double t) const {
   double tau = 0;

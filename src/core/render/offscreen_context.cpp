@@ -25,6 +25,16 @@ const char* glErrorName(GLenum error) {
   }
 }
 
+// The info log of a shader or program: get_iv and get_log are glGetShaderiv and glGetShaderInfoLog, or the program's.
+template <class GetIv, class GetLog>
+std::string infoLog(GLuint object, GetIv get_iv, GetLog get_log) {
+  GLint length = 0;
+  get_iv(object, GL_INFO_LOG_LENGTH, &length);
+  std::string log(static_cast<size_t>(length > 0 ? length : 1), '\0');
+  get_log(object, static_cast<GLsizei>(log.size()), nullptr, &log[0]);
+  return log.c_str();  // up to the terminating zero
+}
+
 std::mutex& contextLifetimeMutex() {
   static std::mutex mutex;
   return mutex;
@@ -117,44 +127,40 @@ GLuint compileShader(GLenum type, const std::string& source, const std::string& 
   GLint ok = GL_FALSE;
   glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
   if (ok) return shader;
-
-  GLint length = 0;
-  glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
-  std::string log(static_cast<size_t>(length > 0 ? length : 1), '\0');
-  glGetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, &log[0]);
+  const std::string log = infoLog(shader, glGetShaderiv, glGetShaderInfoLog);
   glDeleteShader(shader);
-  const char* kind = type == GL_VERTEX_SHADER ? "vertex" : type == GL_FRAGMENT_SHADER ? "fragment" : "";
-  throw std::runtime_error("compiling " + std::string(kind) + " shader of " + name + ": " +
-                           log.c_str());
+  const char* kind = type == GL_VERTEX_SHADER     ? "vertex"
+                     : type == GL_GEOMETRY_SHADER ? "geometry"
+                     : type == GL_FRAGMENT_SHADER ? "fragment"
+                                                  : "";
+  throw std::runtime_error("compiling " + std::string(kind) + " shader of " + name + ": " + log);
 }
 
-GLuint linkProgram(const std::string& vertex_source, const std::string& fragment_source,
-                   const std::string& name) {
-  GLuint vertex = compileShader(GL_VERTEX_SHADER, vertex_source, name);
-  GLuint fragment = 0;
+GLuint linkProgram(const std::vector<ShaderStage>& stages, const std::string& name) {
+  std::vector<GLuint> shaders;
   try {
-    fragment = compileShader(GL_FRAGMENT_SHADER, fragment_source, name);
+    for (const ShaderStage& stage : stages) shaders.push_back(compileShader(stage.type, stage.source, name));
   } catch (...) {
-    glDeleteShader(vertex);
+    for (GLuint shader : shaders) glDeleteShader(shader);
     throw;
   }
   GLuint program = glCreateProgram();
-  glAttachShader(program, vertex);
-  glAttachShader(program, fragment);
+  for (GLuint shader : shaders) glAttachShader(program, shader);
   glLinkProgram(program);
   // The program keeps the compiled code; the shader objects can go now.
-  glDeleteShader(vertex);
-  glDeleteShader(fragment);
+  for (GLuint shader : shaders) glDeleteShader(shader);
 
   GLint ok = GL_FALSE;
   glGetProgramiv(program, GL_LINK_STATUS, &ok);
   if (ok) return program;
-  GLint length = 0;
-  glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
-  std::string log(static_cast<size_t>(length > 0 ? length : 1), '\0');
-  glGetProgramInfoLog(program, static_cast<GLsizei>(log.size()), nullptr, &log[0]);
+  const std::string log = infoLog(program, glGetProgramiv, glGetProgramInfoLog);
   glDeleteProgram(program);
-  throw std::runtime_error("linking shader program " + name + ": " + log.c_str());
+  throw std::runtime_error("linking shader program " + name + ": " + log);
+}
+
+GLuint linkProgram(const std::string& vertex_source, const std::string& fragment_source,
+                   const std::string& name) {
+  return linkProgram({{GL_VERTEX_SHADER, vertex_source}, {GL_FRAGMENT_SHADER, fragment_source}}, name);
 }
 
 void checkGlError(const char* what) {

@@ -36,8 +36,7 @@ double LagrangianBound::evaluate(const Word* U, const Word* A, const double* u) 
     if (ui <= 0) return;
     bound += ui;
     const Word* row = core_.coverers.row(i);
-    for (int w = 0; w < cw_; ++w)
-      for (Word bits = row[w] & A[w]; bits; bits &= bits - 1) cost_[w * 64 + __builtin_ctzll(bits)] -= ui;
+    forEachCommonBit(row, A, cw_, [&](int j) { cost_[j] -= ui; });
   });
   std::fill(chosen_.begin(), chosen_.end(), 0);
   forEachBit(A, cw_, [&](int j) {
@@ -242,8 +241,7 @@ void dualStart(const CoreProblem& core, const Word* U, const Word* A, double* u)
   forEachBit(U, ew, [&](int i) {
     int most = 1;
     const Word* row = core.coverers.row(i);
-    for (int w = 0; w < cw; ++w)
-      for (Word bits = row[w] & A[w]; bits; bits &= bits - 1) most = std::max(most, size[w * 64 + __builtin_ctzll(bits)]);
+    forEachCommonBit(row, A, cw, [&](int j) { most = std::max(most, size[j]); });
     u[i] = 1.0 / most;
   });
 }

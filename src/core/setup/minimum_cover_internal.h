@@ -71,6 +71,13 @@ inline void forEachBit(const Word* a, int words, F&& f) {
     for (Word bits = a[w]; bits != 0; bits &= bits - 1) f(w * 64 + __builtin_ctzll(bits));
 }
 
+// f(index) for every bit set in both a and b, ascending.
+template <class F>
+inline void forEachCommonBit(const Word* a, const Word* b, int words, F&& f) {
+  for (int w = 0; w < words; ++w)
+    for (Word bits = a[w] & b[w]; bits != 0; bits &= bits - 1) f(w * 64 + __builtin_ctzll(bits));
+}
+
 // The cyclic core: what the reduction could not decide. Candidates, elements and bonus items renumbered densely;
 // bonus items are only those no essential candidate has earned yet (none when the bonus is ignored).
 struct CoreProblem {

@@ -173,24 +173,18 @@ class BranchAndBound {
     for (const auto& [count, e] : order_) {
       const Word* row = core_.coverers.row(e);
       int most = 0;
-      for (int w = 0; w < cw_; ++w)
-        for (Word bits = row[w] & A[w]; bits; bits &= bits - 1)
-          most = std::max(most, row_count_[w * 64 + __builtin_ctzll(bits)]);
+      forEachCommonBit(row, A, cw_, [&](int c) { most = std::max(most, row_count_[c]); });
       const double y = 1.0 / most;
       total += y;
-      for (int w = 0; w < cw_; ++w)
-        for (Word bits = row[w] & A[w]; bits; bits &= bits - 1) slack_[w * 64 + __builtin_ctzll(bits)] -= y;
+      forEachCommonBit(row, A, cw_, [&](int c) { slack_[c] -= y; });
     }
     for (const auto& [count, e] : order_) {
       const Word* row = core_.coverers.row(e);
       double raise = 1.0;
-      for (int w = 0; w < cw_; ++w)
-        for (Word bits = row[w] & A[w]; bits; bits &= bits - 1)
-          raise = std::min(raise, slack_[w * 64 + __builtin_ctzll(bits)]);
+      forEachCommonBit(row, A, cw_, [&](int c) { raise = std::min(raise, slack_[c]); });
       if (raise <= 1e-12) continue;
       total += raise;
-      for (int w = 0; w < cw_; ++w)
-        for (Word bits = row[w] & A[w]; bits; bits &= bits - 1) slack_[w * 64 + __builtin_ctzll(bits)] -= raise;
+      forEachCommonBit(row, A, cw_, [&](int c) { slack_[c] -= raise; });
     }
     return total;
   }

@@ -10,10 +10,8 @@
 namespace art2part {
 
 ToolType parseToolType(const std::string& text) {
-  if (text == "flat") return ToolType::Flat;
-  if (text == "ball") return ToolType::Ball;
-  if (text == "bull") return ToolType::Bull;
-  if (text == "drill") return ToolType::Drill;
+  for (ToolType type : {ToolType::Flat, ToolType::Ball, ToolType::Bull, ToolType::Drill})
+    if (text == toolTypeName(type)) return type;
   throw InputError("unknown tool type '" + text + "' (expected flat, ball, bull or drill)");
 }
 

@@ -62,6 +62,16 @@ int wholeFlutes(double flutes, const std::string& where) {
   return static_cast<int>(flutes);
 }
 
+// The optional cutting numbers of a tool entry, the same keys in tools.yaml and tools.json (flutes and material apart:
+// a whole number and a text).
+struct CuttingNumber {
+  const char* key;      // the entry's key
+  double Tool::*field;  // the tool's field it fills
+};
+const CuttingNumber kCuttingNumbers[] = {{"spindle_rpm", &Tool::spindle_rpm},   {"feed_mm_min", &Tool::feed_mm_min},
+                                         {"plunge_mm_min", &Tool::plunge_mm_min}, {"max_stepdown", &Tool::max_stepdown},
+                                         {"max_stepover", &Tool::max_stepover}};
+
 // ---- config/tools.yaml ----------------------------------------------------------------------------------------------
 
 const std::set<std::string> kYamlKeys = {"id",           "type",          "diameter",     "corner_radius",
@@ -106,11 +116,8 @@ std::vector<HolderStep> yamlToolHolder(const YAML::Node& entry, const HolderMap&
 
 void yamlCuttingData(const YAML::Node& entry, Tool& tool, const std::string& where) {
   tool.flutes = wholeFlutes(yamlNumberOr(entry, "flutes", tool.flutes, where), where);
-  tool.spindle_rpm = yamlNumberOr(entry, "spindle_rpm", tool.spindle_rpm, where);
-  tool.feed_mm_min = yamlNumberOr(entry, "feed_mm_min", tool.feed_mm_min, where);
-  tool.plunge_mm_min = yamlNumberOr(entry, "plunge_mm_min", tool.plunge_mm_min, where);
-  tool.max_stepdown = yamlNumberOr(entry, "max_stepdown", tool.max_stepdown, where);
-  tool.max_stepover = yamlNumberOr(entry, "max_stepover", tool.max_stepover, where);
+  for (const CuttingNumber& number : kCuttingNumbers)
+    tool.*number.field = yamlNumberOr(entry, number.key, tool.*number.field, where);
   if (entry["material"]) tool.material = yamlText(entry, "material", where);
 }
 
@@ -187,12 +194,8 @@ Json toJson(const Tool& tool) {
               {"stickout", tool.stickout},
               {"holder", holder},
               {"flutes", tool.flutes},
-              {"spindle_rpm", tool.spindle_rpm},
-              {"feed_mm_min", tool.feed_mm_min},
-              {"plunge_mm_min", tool.plunge_mm_min},
-              {"max_stepdown", tool.max_stepdown},
-              {"max_stepover", tool.max_stepover},
               {"material", tool.material}};
+  for (const CuttingNumber& number : kCuttingNumbers) out[number.key] = tool.*number.field;
   if (tool.type == ToolType::Drill) out["point_angle_deg"] = tool.point_angle_deg;
   return out;
 }
@@ -228,11 +231,8 @@ std::vector<HolderStep> jsonHolder(const Json& entry, const std::string& where) 
 
 void jsonCuttingData(const Json& entry, Tool& tool, const std::string& where) {
   tool.flutes = wholeFlutes(jsonNumberOr(entry, "flutes", tool.flutes, where), where);
-  tool.spindle_rpm = jsonNumberOr(entry, "spindle_rpm", tool.spindle_rpm, where);
-  tool.feed_mm_min = jsonNumberOr(entry, "feed_mm_min", tool.feed_mm_min, where);
-  tool.plunge_mm_min = jsonNumberOr(entry, "plunge_mm_min", tool.plunge_mm_min, where);
-  tool.max_stepdown = jsonNumberOr(entry, "max_stepdown", tool.max_stepdown, where);
-  tool.max_stepover = jsonNumberOr(entry, "max_stepover", tool.max_stepover, where);
+  for (const CuttingNumber& number : kCuttingNumbers)
+    tool.*number.field = jsonNumberOr(entry, number.key, tool.*number.field, where);
   if (entry.contains("material")) tool.material = jsonText(entry, "material", where);
 }
 

@@ -100,23 +100,11 @@ flat in int triangle;
 void main() { marks[triangle] = stamp; }
 )";
 
-// linkProgram() of offscreen_context.h takes no geometry shader: vertex, geometry and fragment linked here.
 GLuint linkOutlineProgram() {
-  const char* name = "visibility outlines";
-  const GLuint shaders[3] = {compileShader(GL_VERTEX_SHADER, kVertexShader, name),
-                             compileShader(GL_GEOMETRY_SHADER, kOutlineGeometryShader, name),
-                             compileShader(GL_FRAGMENT_SHADER, kMarkShader, name)};
-  const GLuint program = glCreateProgram();
-  for (GLuint shader : shaders) glAttachShader(program, shader);
-  glLinkProgram(program);
-  for (GLuint shader : shaders) glDeleteShader(shader);  // the program keeps the compiled code
-  GLint ok = GL_FALSE;
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    glDeleteProgram(program);
-    throw std::runtime_error(std::string("linking shader program ") + name);
-  }
-  return program;
+  return linkProgram({{GL_VERTEX_SHADER, kVertexShader},
+                      {GL_GEOMETRY_SHADER, kOutlineGeometryShader},
+                      {GL_FRAGMENT_SHADER, kMarkShader}},
+                     "visibility outlines");
 }
 
 // Pixels the outline keeps inside its triangle: more than half, so the pixel centre a fragment is tested at (within
