@@ -46,7 +46,25 @@ ResultPtrOf<Action> StageChain::callAction(
       throw StageFailure(stage, "no node offers it (waited " + std::to_string(static_cast<int>(options_.server_wait_s)) +
                                     " s for its action)");
   }
-  client.sendGoal(goal, {}, {}, [&on_feedback](const FeedbackPtrOf<Action>& f) { on_feedback(f); });
+  // Feedback comes on the client's thread, also after this call has given up on the goal: it passes through a gate
+  // closed (under its lock) on every way out, so a late message never reaches the caller's finished sink.
+  struct Gate {
+    std::mutex mutex;
+    std::function<void(const FeedbackPtrOf<Action>&)> forward;
+  };
+  auto gate = std::make_shared<Gate>();
+  gate->forward = on_feedback;
+  struct Closer {
+    std::shared_ptr<Gate> gate;
+    ~Closer() {
+      std::lock_guard<std::mutex> lock(gate->mutex);
+      gate->forward = nullptr;
+    }
+  } closer{gate};
+  client.sendGoal(goal, {}, {}, [gate](const FeedbackPtrOf<Action>& f) {
+    std::lock_guard<std::mutex> lock(gate->mutex);
+    if (gate->forward) gate->forward(f);
+  });
   while (!client.waitForResult(ros::Duration(options_.poll_s))) {
     if (!go_on()) {
       client.cancelGoal();
