@@ -237,7 +237,7 @@ TEST(CellSupervisor, CancelEndsAGoalWithinASecond) {
 
 // The pid of a running node, from `rosnode info` (-1 when it is not running).
 int nodePid(const std::string& node) {
-  const std::string command = "rosnode info -q " + node + " 2>/dev/null";
+  const std::string command = "rosnode info " + node + " 2>/dev/null";
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return -1;
   char line[512];
