@@ -54,23 +54,28 @@ struct GoalRun {
 
 class Tracker {
  public:
-  explicit Tracker(Client& client) : client_(client) {}
+  explicit Tracker(Client& client) : client_(client), shared_(std::make_shared<Shared>()) {}
 
+  // The feedback callback holds the shared state, not the tracker: a late feedback message of a goal that has
+  // ended (the client keeps the callback until its next goal) never reaches a tracker that is gone.
   void send(const PlanPartGoal& goal) {
     start_ = std::chrono::steady_clock::now();
+    shared_->start = start_;
+    auto shared = shared_;
     client_.sendGoal(goal, Client::SimpleDoneCallback(), Client::SimpleActiveCallback(),
-                     [this](const PlanPartFeedbackConstPtr& f) {
-                       std::lock_guard<std::mutex> lock(mutex_);
-                       run_.feedback.push_back(*f);
-                       run_.times.push_back(elapsed());
+                     [shared](const PlanPartFeedbackConstPtr& f) {
+                       std::lock_guard<std::mutex> lock(shared->mutex);
+                       shared->run.feedback.push_back(*f);
+                       shared->run.times.push_back(
+                           std::chrono::duration<double>(std::chrono::steady_clock::now() - shared->start).count());
                      });
   }
 
   bool waitForStage(const std::string& stage, double timeout) {
     for (double t = 0; t < timeout; t += 0.02) {
       {
-        std::lock_guard<std::mutex> lock(mutex_);
-        for (const PlanPartFeedback& f : run_.feedback)
+        std::lock_guard<std::mutex> lock(shared_->mutex);
+        for (const PlanPartFeedback& f : shared_->run.feedback)
           if (f.stage == stage) return true;
       }
       ros::Duration(0.02).sleep();
@@ -80,11 +85,12 @@ class Tracker {
 
   GoalRun finish(double timeout) {
     client_.waitForResult(ros::Duration(timeout));
-    std::lock_guard<std::mutex> lock(mutex_);
-    run_.state = client_.getState();
-    if (client_.getResult()) run_.result = *client_.getResult();
-    run_.seconds = elapsed();
-    return run_;
+    std::lock_guard<std::mutex> lock(shared_->mutex);
+    GoalRun run = shared_->run;
+    run.state = client_.getState();
+    if (client_.getResult()) run.result = *client_.getResult();
+    run.seconds = elapsed();
+    return run;
   }
 
   double elapsed() const {
@@ -92,9 +98,13 @@ class Tracker {
   }
 
  private:
+  struct Shared {
+    std::mutex mutex;
+    GoalRun run;
+    std::chrono::steady_clock::time_point start;
+  };
   Client& client_;
-  std::mutex mutex_;
-  GoalRun run_;
+  std::shared_ptr<Shared> shared_;
   std::chrono::steady_clock::time_point start_;
 };
 
