@@ -232,7 +232,7 @@ TEST(CellSupervisor, OneGoalMakesTheSamePlanAsTheCommandLine) {
 
 // A cancel in any stage ends the goal PREEMPTED within a second, and the next goal runs.
 TEST(CellSupervisor, CancelEndsAGoalWithinASecond) {
-  for (const char* stage : {"visibility", "roughing", "finishing"}) {
+  for (const char* stage : {"visibility", "roughing", "finishing", "verification"}) {
     SCOPED_TRACE(stage);
     Tracker t(client());
     t.send(featuretypeGoal());
