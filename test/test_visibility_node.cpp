@@ -8,6 +8,8 @@
 #include <art2part/LoadPart.h>
 #include <art2part/ShowCone.h>
 
+#include <atomic>
+
 using namespace art2part;
 using Client = actionlib::SimpleActionClient<AnalyseVisibilityAction>;
 
@@ -83,6 +85,39 @@ TEST(VisibilityNode, AnalysesALoadedPartAndSurvivesBadGoals) {
   ASSERT_TRUE(ros::service::call("show_cone", cone));
   EXPECT_TRUE(cone.response.success) << cone.response.message;
   EXPECT_NEAR(cone.response.solid_angle, r->cone_solid_angle[0], 1e-12);
+}
+
+// A goal that comes while one runs waits for it: both end SUCCEEDED, in order (a stage node never lets one client's
+// goal preempt another's: the cell supervisor's goal would fail).
+TEST(VisibilityNode, ASecondGoalWaitsForTheRunningOne) {
+  Client first("analyse_visibility", true), second("analyse_visibility", true);
+  ASSERT_TRUE(first.waitForServer(ros::Duration(60)));
+  ASSERT_TRUE(second.waitForServer(ros::Duration(60)));
+  LoadPart load;
+  load.request.path = kExample;
+  load.request.part_id = "ctc1";
+  ASSERT_TRUE(ros::service::call("load_part", load));
+  AnalyseVisibilityGoal big, small;
+  big.part_id = small.part_id = "ctc1";
+  big.level = 4;
+  small.level = 1;
+  std::atomic<bool> running{false};
+  first.sendGoal(big, Client::SimpleDoneCallback(), Client::SimpleActiveCallback(),
+                 [&running](const AnalyseVisibilityFeedbackConstPtr& f) {
+                   if (f->stage == "visibility") running = true;
+                 });
+  for (int i = 0; i < 600 && !running; ++i) ros::Duration(0.05).sleep();
+  ASSERT_TRUE(running) << "the first goal never reported its analysis";
+  second.sendGoal(small);
+  ASSERT_TRUE(first.waitForResult(ros::Duration(300)));
+  EXPECT_EQ(first.getState(), actionlib::SimpleClientGoalState::SUCCEEDED) << first.getState().toString();
+  ASSERT_TRUE(first.getResult());
+  EXPECT_TRUE(first.getResult()->success) << first.getResult()->message;
+  EXPECT_GE(first.getResult()->directions.size(), 1024u) << "the first goal's own level";
+  ASSERT_TRUE(second.waitForResult(ros::Duration(300)));
+  EXPECT_EQ(second.getState(), actionlib::SimpleClientGoalState::SUCCEEDED) << second.getState().toString();
+  ASSERT_TRUE(second.getResult());
+  EXPECT_LT(second.getResult()->directions.size(), 1024u) << "the second goal's own level";
 }
 
 int main(int argc, char** argv) {

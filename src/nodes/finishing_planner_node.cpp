@@ -29,6 +29,7 @@
 #include "art2part/plan/plan_folder.h"
 #include "finishing_markers.h"
 #include "node_diagnostics.h"
+#include "stage_goals.h"
 #include "part_client.h"
 #include "marker_helpers.h"
 
@@ -73,7 +74,7 @@ class FinishingPlannerNode {
         feedback.fraction = p.fraction;
         feedback.message = p.message;
         server_.publishFeedback(feedback);
-        return !server_.isPreemptRequested() && ros::ok();
+        return !cancelAsked(server_) && ros::ok();
       };
       const PlanResult plan = handsOn(*goal) ? finishHandedOn(*goal, *part, library, options, progress)
                                              : planPart(*part, library, options, progress);
@@ -100,7 +101,7 @@ class FinishingPlannerNode {
       server_.setSucceeded(result);
       request.finish(RequestOutcome::Served, result.message);
     } catch (const std::exception& e) {  // InputError (a bad goal) and anything else: no crash
-      const bool preempted = server_.isPreemptRequested();
+      const bool preempted = cancelAsked(server_);
       result = PlanFinishingResult();
       result.success = false;
       result.message = preempted ? "preempted: " + std::string(e.what()) : e.what();

@@ -13,8 +13,8 @@
 //             /art2part/output_root (cell_folders.h): output_dir must lie under it (relative: under it)
 //   topics:   /diagnostics (node_diagnostics.h)
 // A bad goal (unknown part or tool, a tool that cannot rough, a bad mode or number, an output_dir outside the output
-// root or unwritable) is aborted with a one-line reason in result.message; the node stays up. A cancel, or a new goal, stops the running one
-// at the next stage or setup (a setup being roughed is finished first); it ends preempted.
+// root or unwritable) is aborted with a one-line reason in result.message; the node stays up. A cancel stops the running one
+// within a level; it ends preempted. A new goal waits for the running one (stage_goals.h).
 #include "roughing_markers.h"  // first: the message MachiningOperation beside the core's RoughingOperation
 
 #include <actionlib/server/simple_action_server.h>
@@ -28,6 +28,7 @@
 #include "art2part/plan/stage_records.h"
 #include "cell_folders.h"
 #include "node_diagnostics.h"
+#include "stage_goals.h"
 #include "part_client.h"
 #include "marker_helpers.h"
 
@@ -39,7 +40,7 @@ namespace art2part {
 
 namespace {
 
-// Thrown when the client cancels a goal (or a newer goal preempts it) between two steps.
+// Thrown when the client cancels the goal, between two steps.
 struct Preempted : std::runtime_error {
   Preempted() : std::runtime_error("preempted") {}
 };
@@ -69,7 +70,7 @@ class RoughingPlannerNode {
  private:
   void feedback(PlanRoughingFeedback& f) {
     server_.publishFeedback(f);
-    if (server_.isPreemptRequested() || !ros::ok()) throw Preempted();
+    if (cancelAsked(server_) || !ros::ok()) throw Preempted();
   }
 
   void execute(const PlanRoughingGoalConstPtr& goal) {
@@ -114,7 +115,7 @@ class RoughingPlannerNode {
       request.finish(RequestOutcome::Served, result.message);
     } catch (const std::exception& e) {  // InputError (a bad goal), a cancelled goal and anything else: no crash
       const bool stopped = dynamic_cast<const Preempted*>(&e) != nullptr;
-      const bool preempted = stopped || server_.isPreemptRequested();
+      const bool preempted = stopped || cancelAsked(server_);
       result = PlanRoughingResult();
       result.success = false;
       result.message = stopped ? std::string("preempted") : preempted ? "preempted: " + std::string(e.what()) : e.what();
@@ -134,7 +135,7 @@ class RoughingPlannerNode {
     auto progress = [this, &f](const ProgressReport& p) {
       f.fraction = p.fraction;
       server_.publishFeedback(f);
-      return !server_.isPreemptRequested() && ros::ok();
+      return !cancelAsked(server_) && ros::ok();
     };
     const VisibilityResult visibility = analyseVisibility(part, visibility_options, progress);
     if (visibility.cancelled) throw Preempted();
@@ -159,7 +160,7 @@ class RoughingPlannerNode {
       f.levels_done = static_cast<uint32_t>(p.done);
       f.operation = p.message;
       server_.publishFeedback(f);
-      return !server_.isPreemptRequested() && ros::ok();
+      return !cancelAsked(server_) && ros::ok();
     });
     if (stage.roughing.cancelled) throw Preempted();
     f.stage = "done";

@@ -16,6 +16,7 @@
 
 #include "art2part/common/request_limits.h"
 #include "node_diagnostics.h"
+#include "stage_goals.h"
 #include "part_client.h"
 #include "visibility_markers.h"
 #include "marker_helpers.h"
@@ -78,7 +79,7 @@ class VisibilityNode {
       auto progress = [this, &feedback](const ProgressReport& p) {
         feedback.fraction = p.fraction;
         server_.publishFeedback(feedback);
-        return !server_.isPreemptRequested() && ros::ok();
+        return !cancelAsked(server_) && ros::ok();
       };
       auto analysis = std::make_shared<VisibilityResult>(analyseVisibility(*part, options, progress));
       if (analysis->cancelled) throw std::runtime_error("cancelled");  // ends preempted below
@@ -98,7 +99,7 @@ class VisibilityNode {
       result.success = false;
       result.message = e.what();
       ROS_WARN("analyse_visibility: %s", e.what());
-      const bool preempted = server_.isPreemptRequested();
+      const bool preempted = cancelAsked(server_);
       if (preempted) server_.setPreempted(result, e.what());
       else server_.setAborted(result, e.what());
       request.finish(preempted ? RequestOutcome::Cancelled : outcomeOf(e), e.what());
