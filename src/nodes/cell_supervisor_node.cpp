@@ -29,6 +29,7 @@
 #include <mutex>
 #include <thread>
 
+#include "node_main.h"
 #include "art2part/plan/plan_folder.h"
 #include "art2part/tooling/tool.h"
 #include "cell_folders.h"
@@ -381,11 +382,6 @@ class CellSupervisorNode {
 }  // namespace art2part
 
 int main(int argc, char** argv) {
-  ros::init(argc, argv, "cell_supervisor");
-  ros::NodeHandle nh, pnh("~");
-  art2part::CellSupervisorNode node(nh, pnh);
-  ros::AsyncSpinner spinner(2);  // goals, cancels, services and the heartbeat while the worker plans
-  spinner.start();
-  ros::waitForShutdown();
-  return 0;
+  // 2 threads: goals, cancels, services and the heartbeat while the worker plans.
+  return art2part::runNode<art2part::CellSupervisorNode>(argc, argv, "cell_supervisor", 2);
 }

@@ -15,6 +15,7 @@
 //   topics:   /diagnostics (node_diagnostics.h)
 // A bad goal (unknown part, bad mode, level or length, an output_dir outside the output root or unwritable) is
 // aborted with a one-line reason in result.message; the node stays up. A cancel stops the plan at the next stage or group of faces; it ends preempted.
+#include "node_main.h"
 #include "setup_markers.h"  // visibilityFromMessage
 
 #include <actionlib/server/simple_action_server.h>
@@ -168,9 +169,6 @@ class FinishingPlannerNode {
     return text;
   }
 
-  static double secondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  }
 
   const CellFolders folders_ = readCellFolders(true);
   NodeDiagnostics diagnostics_;
@@ -183,11 +181,6 @@ class FinishingPlannerNode {
 }  // namespace art2part
 
 int main(int argc, char** argv) {
-  ros::init(argc, argv, "finishing_planner");
-  ros::NodeHandle nh, pnh("~");
-  art2part::FinishingPlannerNode node(nh, pnh);
-  ros::AsyncSpinner spinner(1);  // goals and cancels arrive while the action's thread plans
-  spinner.start();
-  ros::waitForShutdown();
-  return 0;
+  // 1 thread: goals and cancels arrive while the action's thread plans.
+  return art2part::runNode<art2part::FinishingPlannerNode>(argc, argv, "finishing_planner", 1);
 }

@@ -15,6 +15,7 @@
 #include <art2part/ListParts.h>
 #include <art2part/LoadPart.h>
 
+#include "node_main.h"
 #include "art2part/common/request_limits.h"
 #include "cell_folders.h"
 #include "node_diagnostics.h"
@@ -127,10 +128,4 @@ class PartServer {
 
 }  // namespace art2part
 
-int main(int argc, char** argv) {
-  ros::init(argc, argv, "part_server");
-  ros::NodeHandle nh, pnh("~");
-  art2part::PartServer server(nh, pnh);
-  ros::spin();
-  return 0;
-}
+int main(int argc, char** argv) { return art2part::runNode<art2part::PartServer>(argc, argv, "part_server", 1); }

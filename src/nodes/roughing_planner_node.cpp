@@ -16,6 +16,7 @@
 // root or unwritable) is aborted with a one-line reason in result.message; the node stays up. A cancel stops the running one
 // within a level; it ends preempted. A new goal waits for the running one (stage_goals.h).
 #include "roughing_markers.h"  // first: the message MachiningOperation beside the core's RoughingOperation
+#include "node_main.h"
 
 #include <actionlib/server/simple_action_server.h>
 #include <ros/ros.h>
@@ -187,9 +188,6 @@ class RoughingPlannerNode {
     return text;
   }
 
-  static double secondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  }
 
   const CellFolders folders_ = readCellFolders(true);
   NodeDiagnostics diagnostics_;
@@ -202,11 +200,6 @@ class RoughingPlannerNode {
 }  // namespace art2part
 
 int main(int argc, char** argv) {
-  ros::init(argc, argv, "roughing_planner");
-  ros::NodeHandle nh, pnh("~");
-  art2part::RoughingPlannerNode node(nh, pnh);
-  ros::AsyncSpinner spinner(1);  // goals and cancels arrive while the action's thread plans
-  spinner.start();
-  ros::waitForShutdown();
-  return 0;
+  // 1 thread: goals and cancels arrive while the action's thread plans.
+  return art2part::runNode<art2part::RoughingPlannerNode>(argc, argv, "roughing_planner", 1);
 }

@@ -13,6 +13,7 @@
 //             (markers: every namespace under "<part_id>/", a DELETEALL first; marker_helpers' forPart)
 // A bad request answers success=false with the reason; the node stays up. Requests run in parallel (AsyncSpinner);
 // when plans finish out of order, the markers and frames shown are those of the most recent request.
+#include "node_main.h"
 #include "setup_markers.h"  // first: it renames the message art2part::Setup (see there)
 
 #include <ros/ros.h>
@@ -115,11 +116,6 @@ class SetupPlannerNode {
 }  // namespace art2part
 
 int main(int argc, char** argv) {
-  ros::init(argc, argv, "setup_planner");
-  ros::NodeHandle nh, pnh("~");
-  art2part::SetupPlannerNode node(nh, pnh);
-  ros::AsyncSpinner spinner(2);  // a bad request is answered while a plan runs
-  spinner.start();
-  ros::waitForShutdown();
-  return 0;
+  // 2 threads: a bad request is answered while a plan runs.
+  return art2part::runNode<art2part::SetupPlannerNode>(argc, argv, "setup_planner", 2);
 }

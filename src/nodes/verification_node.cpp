@@ -20,6 +20,7 @@
 #include <chrono>
 #include <mutex>
 
+#include "node_main.h"
 #include "art2part/plan/plan_pictures.h"
 #include "cell_folders.h"
 #include "part_client.h"
@@ -115,11 +116,6 @@ class VerificationNode {
 }  // namespace art2part
 
 int main(int argc, char** argv) {
-  ros::init(argc, argv, "verification");
-  ros::NodeHandle nh, pnh("~");
-  art2part::VerificationNode node(nh, pnh);
-  ros::AsyncSpinner spinner(2);  // a bad request is answered while a verification runs
-  spinner.start();
-  ros::waitForShutdown();
-  return 0;
+  // 2 threads: a bad request is answered while a verification runs.
+  return art2part::runNode<art2part::VerificationNode>(argc, argv, "verification", 2);
 }

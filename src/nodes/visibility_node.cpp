@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cstring>
 
+#include "node_main.h"
 #include "art2part/common/request_limits.h"
 #include "node_diagnostics.h"
 #include "stage_goals.h"
@@ -162,11 +163,6 @@ class VisibilityNode {
 }  // namespace art2part
 
 int main(int argc, char** argv) {
-  ros::init(argc, argv, "visibility");
-  ros::NodeHandle nh, pnh("~");
-  art2part::VisibilityNode node(nh, pnh);
-  ros::AsyncSpinner spinner(2);  // show_cone answers while an analysis runs
-  spinner.start();
-  ros::waitForShutdown();
-  return 0;
+  // 2 threads: show_cone answers while an analysis runs.
+  return art2part::runNode<art2part::VisibilityNode>(argc, argv, "visibility", 2);
 }
