@@ -223,4 +223,11 @@ void interpolateTrajectory(const trajectory_msgs::JointTrajectory& msg, const st
   if (velocities) *velocities = v;
 }
 
+Machine machineParameter(const ros::NodeHandle& pnh) {
+  std::string machine_file;
+  if (!pnh.getParam("machine", machine_file))
+    throw InputError("set ~machine to a machine file (config/machines/*.yaml)");
+  return loadMachine(machine_file);
+}
+
 }  // namespace art2part

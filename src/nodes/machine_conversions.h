@@ -5,6 +5,7 @@
 // machine's joint letters (rosJointName, as the URDF of machine_urdf.h).
 #pragma once
 
+#include "node_main.h"
 #include <ros/ros.h>
 #include <sensor_msgs/JointState.h>
 #include <trajectory_msgs/JointTrajectory.h>
@@ -68,28 +69,19 @@ TrajectoryCheck checkTrajectoryGoal(const Machine& machine, const trajectory_msg
 void interpolateTrajectory(const trajectory_msgs::JointTrajectory& msg, const std::vector<double>& start, double t,
                            std::vector<double>* positions, std::vector<double>* velocities);
 
-// A node that drives one machine: ros::init as `name`, the machine from the file in its ~machine parameter, a
-// Node(nh, pnh, machine) serving with `threads` spinner threads until shutdown. Returns main's exit code; a missing
-// parameter or a bad machine file is one ROS_FATAL line and 1.
+// The machine file in a node's ~machine parameter, loaded. Throws InputError when it is not set or not a machine.
+Machine machineParameter(const ros::NodeHandle& pnh);
+
+// A node that drives one machine: runNode (node_main.h) of a Node(nh, pnh, machine) with the machine from its
+// ~machine parameter; a missing parameter or a bad machine file is one ROS_FATAL line and exit code 1.
+template <class Node>
+struct MachineNode {
+  MachineNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : node(nh, pnh, machineParameter(pnh)) {}
+  Node node;
+};
 template <class Node>
 int runMachineNode(int argc, char** argv, const char* name, int threads) {
-  ros::init(argc, argv, name);
-  ros::NodeHandle nh, pnh("~");
-  std::string machine_file;
-  if (!pnh.getParam("machine", machine_file)) {
-    ROS_FATAL("%s: set ~machine to a machine file (config/machines/*.yaml)", name);
-    return 1;
-  }
-  try {
-    Node node(nh, pnh, loadMachine(machine_file));
-    ros::AsyncSpinner spinner(threads);
-    spinner.start();
-    ros::waitForShutdown();
-  } catch (const std::exception& e) {
-    ROS_FATAL("%s: %s", name, e.what());
-    return 1;
-  }
-  return 0;
+  return runNode<MachineNode<Node>>(argc, argv, name, threads);
 }
 
 }  // namespace art2part
