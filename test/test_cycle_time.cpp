@@ -204,6 +204,13 @@ TEST(PlanFigures, RemovedVolumePerOperationSumsToTheSimulation) {
   EXPECT_GT(figures.operations.front().removed_mm3, 0);  // the first roughing clears the most
   EXPECT_GT(figures.roughing_bound_s, 0);
 
+  // Useless: a roughing operation under the share of the roughing's volume, with its reason; finishing never.
+  for (const OperationFigures& f : figures.operations) {
+    const bool under = f.removed_mm3 < kUselessRemovalShare * figures.roughing_removed_mm3;
+    EXPECT_EQ(f.useless, !f.finishing && under) << "operation " << f.index;
+    EXPECT_EQ(f.useless_reason.empty(), !f.useless) << "operation " << f.index;
+  }
+
   const nlohmann::json j = planJson(part, plan, machine);
   double ops = 0;
   for (const nlohmann::json& op : j["operations"]) {

@@ -14,7 +14,7 @@ namespace art2part {
 
 // A roughing operation removing less than this share of what the whole roughing removes is useless: plan.json flags
 // it (it stays in the plan: dropping it would change the toolpaths after it).
-constexpr double kUselessRemovalShare = 0.005;
+constexpr double kUselessRemovalShare = 0.001;
 
 // The tool's library removal rate, mm^3/min: max_stepdown x max_stepover x feed (0 step-down = diameter / 2, 0
 // step-over = 0.4 diameter, as Tool says).

@@ -29,7 +29,7 @@ const Tool* findTool(const std::vector<Tool>& tools, const std::string& id) {
 
 std::string uselessReason(double removed, double roughing_removed) {
   char text[200];
-  std::snprintf(text, sizeof text, "removes %.0f mm3, %.2f%% of the %.0f mm3 the roughing removes (under %.1f%%)",
+  std::snprintf(text, sizeof text, "removes %.0f mm3, %.2f%% of the %.0f mm3 the roughing removes (under %.2g%%)",
                 removed, 100 * removed / roughing_removed, roughing_removed, 100 * kUselessRemovalShare);
   return text;
 }
