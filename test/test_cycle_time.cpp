@@ -98,9 +98,12 @@ TEST(CycleTime, PlungeRunsAtThePlungeFeed) {
   const Tool tool = millWithFeed("t1", 1200, 300);  // plunge 5 mm/s
   const Toolpath path = {at(Vec3(0, 0, 10), MoveKind::Rapid), at(Vec3(0, 0, 0), MoveKind::Feed)};
   EXPECT_NEAR(cycleTime(path, {tool}, uniformLimits(400, 3000)).total.cutting_s, 10.0 / 5 + 5.0 / 3000, 1e-9);
-  // Going up the axis is no plunge: the cutting feed.
+  // Going up the axis, or down a ramp shallower than the plunge angle, is no plunge: the cutting feed (as the post).
   const Toolpath up = {at(Vec3(0, 0, 0), MoveKind::Rapid), at(Vec3(0, 0, 10), MoveKind::Feed)};
   EXPECT_NEAR(cycleTime(up, {tool}, uniformLimits(400, 3000)).total.cutting_s, 10.0 / 20 + 20.0 / 3000, 1e-9);
+  const Toolpath ramp = {at(Vec3(0, 0, 10), MoveKind::Rapid), at(Vec3(10 * std::sqrt(3.0), 0, 0), MoveKind::Feed)};
+  const double ramp_accel = 3000 / (std::sqrt(3.0) / 2);  // X, the larger component, limits it
+  EXPECT_NEAR(cycleTime(ramp, {tool}, uniformLimits(400, 3000)).total.cutting_s, 20.0 / 20 + 20.0 / ramp_accel, 1e-9);
 }
 
 TEST(CycleTime, ToolChangeCountedOncePerChange) {

@@ -10,9 +10,9 @@
 //     at the chain's last row.
 //   * Per move (segment from the previous row to this one, length L mm, unit direction u in machine axes):
 //       speed limit V = min over axes vlimit_j / |u_j| (vlimit = the axis's rapid velocity on a rapid, its maximum
-//       velocity on a feed), and on a feed move also the tool's feed, and the plunge feed along the tool axis: a feed
-//       move going down the axis at a share d of its length runs at most at plunge / d (a vertical plunge at the
-//       plunge feed, a 5 deg ramp at the cutting feed);
+//       velocity on a feed), and on a feed move also the feed the post writes for it (machine_program.h): the
+//       tool's plunge feed when the move heads down the tool axis steeper than plunge_angle_deg from it, otherwise
+//       its cutting feed;
 //       acceleration limit A = min over axes amax_j / |u_j|.
 //   * At a corner between moves the direction turns from u1 to u2 at a constant speed v by a parabolic blend of
 //     2 v beta seconds, beta = max_j |u2_j - u1_j| / (2 amax_j): every axis accelerates at most at amax_j. The blend
@@ -47,6 +47,7 @@ struct MotionLimits {
   double rotary_velocity = 0;      // rad/s of the slowest rotary joint; 0: the machine has none
   double rotary_acceleration = 0;  // rad/s^2 of the slowest rotary joint
   double blend_tolerance = 0.005;  // mm: how far a corner blend may leave the path (TrajectoryOptions' default)
+  double plunge_angle_deg = 45;    // a feed move heading down the axis within this of it plunges (PostOptions')
   double tool_change_s = kDefaultToolChangeSeconds;    // per tool change
   double setup_change_s = kDefaultSetupChangeSeconds;  // per change of clamping between setups
 };

@@ -14,6 +14,7 @@ namespace {
 constexpr double kBlendShare = 1.0 / 3;  // a blend takes at most a third of either move (as joint_trajectory.cpp)
 constexpr double kNoMotion = 1e-9;        // mm or rad: a move shorter than this and turning less is no move
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+constexpr double kDegree = 3.14159265358979323846 / 180;
 
 // One move of a chain: from the row before to `row`.
 struct ChainMove {
@@ -88,9 +89,9 @@ class ChainTimer {
       move.speed = alongDirection(rapid ? limits_.rapid_velocity : limits_.feed_velocity, move.direction);
       move.accel = alongDirection(limits_.acceleration, move.direction);
       if (!rapid) {
-        move.speed = std::min(move.speed, tool_.feed_mm_min / 60);
         const double down = -(motion / length).dot(to.axis.normalized());  // share of the move down the tool axis
-        if (down > 0) move.speed = std::min(move.speed, tool_.plunge_mm_min / 60 / down);
+        const bool plunge = down >= std::cos(limits_.plunge_angle_deg * kDegree);
+        move.speed = std::min(move.speed, (plunge ? tool_.plunge_mm_min : tool_.feed_mm_min) / 60);
       }
       if (rotary && turn >= kNoMotion) {
         move.speed = std::min(move.speed, limits_.rotary_velocity * length / turn);
