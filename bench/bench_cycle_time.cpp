@@ -27,11 +27,11 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 
 double ratio(double a, double b) { return b > 0 ? a / b : 0.0; }
 
-// time / bound, or "-" when the bound is under a second (the ratio of nearly nothing says nothing).
-std::string ratioText(double time, double bound) {
-  if (bound < 1) return "-";
+// time / bound, or "-" without one (a bound under kLeastBoundSeconds).
+std::string ratioText(double ratio) {
+  if (ratio <= 0) return "-";
   char text[32];
-  std::snprintf(text, sizeof text, time / bound > 999 ? ">999" : "%.2f", time / bound);
+  std::snprintf(text, sizeof text, ratio > 999 ? ">999" : "%.2f", ratio);
   return text;
 }
 
@@ -39,7 +39,7 @@ void printOperation(const PlanOperation& op, const OperationFigures& f) {
   std::printf("  %3d %2d %-16s %-9s %8.0f %7.0f %5.0f %8.1f %8.1f %9.1f %8.1f %7.0f %6s%s\n", op.index, op.setup,
               op.kind.c_str(), op.tool.c_str(), f.time.cutting_s, f.time.rapid_s, f.time.tool_change_s,
               f.time.cutting_mm / 1000, f.time.rapid_mm / 1000, f.removed_mm3 / 1000, f.mm3_per_min / 1000, f.bound_s,
-              ratioText(f.time.total_s(), f.bound_s).c_str(), f.useless ? "  USELESS" : "");
+              ratioText(f.bound_ratio).c_str(), f.useless ? "  USELESS" : "");
 }
 
 void benchPart(const std::string& name, const ToolLibrary& library, const Machine& machine, bool finish) {

@@ -11,6 +11,7 @@
 #include "art2part/plan/plan_figures.h"
 #include "art2part/plan/plan_json.h"
 #include "art2part/post/cycle_time.h"
+#include "art2part/post/joint_trajectory.h"
 #include "test_solids.h"
 
 namespace art2part {
@@ -92,6 +93,29 @@ TEST(CycleTime, RightAngleCornerIsSlowerThanAStraightLine) {
   MotionLimits loose = limits;
   loose.blend_tolerance = 0.5;
   EXPECT_LT(cycleTime(corner, {tool}, loose).total.rapid_s, turned);
+}
+
+// The model applies the post's trajectory rules in the part frame: on a 3-axis machine whose part frame is its table
+// frame the two agree on a path of rapids, feeds and corners.
+TEST(CycleTime, AgreesWithThePostsTrajectory) {
+  const Machine machine = loadMachine(kConfig + "/machines/vmc_3axis.yaml");
+  const Tool tool = millWithFeed("t1", 1200, 300);
+  const std::vector<Vec3> tips = {Vec3(0, 0, 100), Vec3(0, 0, 50),   Vec3(100, 0, 50),  Vec3(100, 5, 50),
+                                  Vec3(0, 5, 50),   Vec3(0, 10, 50), Vec3(100, 10, 50), Vec3(100, 10, 100)};
+  Toolpath path;
+  std::vector<JointWaypoint> waypoints;
+  for (std::size_t i = 0; i < tips.size(); ++i) {
+    const MoveKind move = i < 2 || i + 1 == tips.size() ? MoveKind::Rapid : MoveKind::Feed;
+    path.push_back(at(tips[i], move));
+    JointWaypoint w;
+    w.joints.linear = tips[i];  // tool length 0: the gauge point is the tip
+    w.move = move;
+    w.feed_mm_min = tool.feed_mm_min;
+    waypoints.push_back(w);
+  }
+  const double trajectory = parameterizeTrajectory(machine, waypoints).duration();
+  const double model = cycleTime(path, {tool}, motionLimits(machine)).total.motion_s();
+  EXPECT_NEAR(model, trajectory, 0.002 * trajectory);  // 0.01 % on this path
 }
 
 TEST(CycleTime, PlungeRunsAtThePlungeFeed) {

@@ -15,6 +15,8 @@ namespace art2part {
 // A roughing operation removing less than this share of what the whole roughing removes is useless: plan.json flags
 // it (it stays in the plan: dropping it would change the toolpaths after it).
 constexpr double kUselessRemovalShare = 0.001;
+// An operation's time against a bound under this many seconds says nothing (a ratio to nearly nothing): no ratio.
+constexpr double kLeastBoundSeconds = 1.0;
 
 // The tool's library removal rate, mm^3/min: max_stepdown x max_stepover x feed (0 step-down = diameter / 2, 0
 // step-over = 0.4 diameter, as Tool says).
@@ -28,6 +30,7 @@ struct OperationFigures {
   double removed_mm3 = 0;   // the stock its moves removed in the simulation
   double mm3_per_min = 0;   // removed_mm3 over its motion time (cutting and rapid)
   double bound_s = 0;       // removed_mm3 at its tool's library rate
+  double bound_ratio = 0;   // its time over bound_s; 0 when bound_s is under kLeastBoundSeconds
   bool useless = false;     // a roughing operation removing under kUselessRemovalShare of the roughing's volume
   std::string useless_reason;
 };

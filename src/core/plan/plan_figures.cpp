@@ -62,6 +62,7 @@ PlanFigures planFigures(const PlanResult& plan, const Machine& machine) {
       const Tool* tool = findTool(plan.tools, op.tool);
       const double rate = tool ? libraryRemovalRate(*tool) : 0.0;
       if (rate > 0) f.bound_s = 60 * f.removed_mm3 / rate;
+      if (f.bound_s >= kLeastBoundSeconds) f.bound_ratio = f.time.total_s() / f.bound_s;
       if (!op.finishing) {
         figures.roughing_removed_mm3 += f.removed_mm3;
         figures.roughing_bound_s += f.bound_s;

@@ -36,7 +36,7 @@ void addFigures(nlohmann::json& j, const OperationFigures& f) {
   j["removed_mm3"] = f.removed_mm3;
   j["material_mm3_per_min"] = f.mm3_per_min;
   j["bound_s"] = f.bound_s;
-  j["bound_ratio"] = f.bound_s > 0 ? nlohmann::json(f.time.total_s() / f.bound_s) : nlohmann::json(nullptr);
+  j["bound_ratio"] = f.bound_ratio > 0 ? nlohmann::json(f.bound_ratio) : nlohmann::json(nullptr);
   if (f.useless) {
     j["useless"] = true;
     j["useless_reason"] = f.useless_reason;
