@@ -90,6 +90,10 @@ Vec3 rpyFromRotation(const Eigen::Matrix3d& rotation);
 // part on the table.
 FixturePose fixtureFacingUp(const Vec3& x, const Vec3& y, const Vec3& z, const Vec3& anchor, const Vec3& table_point);
 
+// What a machine file that says nothing about its changes stands for (plan.json's cycle time, post/cycle_time.h).
+constexpr double kDefaultToolChangeSeconds = 10;    // chip to chip: from the last cut of one tool to the next's first
+constexpr double kDefaultSetupChangeSeconds = 600;  // unclamp, turn and clamp the part, touch off the new setup
+
 struct Machine {
   std::string name;
   std::string description;
@@ -99,6 +103,8 @@ struct Machine {
   RotaryGeometry geometry;
   FixturePose default_fixture;                  // where the part sits unless its setup says otherwise
   std::map<int, FixturePose> setup_fixtures;    // by setup index (toolpaths.csv `setup`)
+  double tool_change_s = kDefaultToolChangeSeconds;    // YAML `tool_change_s`: seconds per tool change
+  double setup_change_s = kDefaultSetupChangeSeconds;  // YAML `setup_change_s`: seconds per change of clamping
 
   bool fiveAxis() const { return kind != MachineKind::Mill3Axis; }
   int jointCount() const { return static_cast<int>(joints.size()); }

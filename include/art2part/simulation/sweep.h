@@ -74,6 +74,9 @@ struct SweepResult {
   std::int64_t poses = 0;
   double seconds = 0;
   bool cancelled = false;  // the progress sink asked to stop: the findings and the stock of the moves swept so far
+  // By toolpath op: the stock its moves removed, mm^3 (Stock::volume's measure: the mean over the three families), so
+  // the ops' figures sum to the stock's volume before the sweep less after it.
+  std::map<int, double> removed_by_op_mm3;
 };
 
 // Tools by id; throws InputError naming the row for a tool id that is not there. With a progress sink the threads all
@@ -85,7 +88,7 @@ SweepResult sweepToolpath(Stock& stock, const MeshDexels& part, const PartDistan
                           const Toolpath& path, const std::map<std::string, ToolSolid>& tools,
                           const SweepOptions& options = {}, const ProgressSink& progress = {});
 
-// Consecutive moves along one straight line (same tool, setup, kind of move and axis, same direction) are swept as
+// Consecutive moves along one straight line (same op, tool, setup, kind of move and axis, same direction) are swept as
 // one segment: the sweep of a segment does not depend on how many points lie on it. Findings go to the move whose
 // stretch of the line holds the point found.
 struct StraightRun {

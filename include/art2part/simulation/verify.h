@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -93,6 +94,7 @@ struct VerificationReport {
   double seconds_sweep = 0, seconds_total = 0, moves_per_second = 0;
   Box stock_box;
   double stock_volume_mm3 = 0, removed_volume_mm3 = 0, remaining_volume_mm3 = 0, part_volume_mm3 = 0;
+  std::map<int, double> removed_by_op_mm3;  // by toolpath op: the stock its moves removed (they sum to removed_volume)
   int closed_open_mesh_edges = 0;  // the part's mesh was open: its boundary chain's edges, closed as solid_closure.h says
 
   bool cancelled = false;  // the progress sink asked to stop: the findings of the moves swept so far, nothing left

@@ -228,6 +228,16 @@ void readFixtures(const Reader& reader, const YAML::Node& root, Machine& machine
   }
 }
 
+// Optional: seconds per tool change and per setup change (the defaults in machine.h when left out).
+void readChangeTimes(const Reader& reader, const YAML::Node& root, Machine& machine) {
+  for (auto [key, value] : {std::pair<const char*, double*>{"tool_change_s", &machine.tool_change_s},
+                            std::pair<const char*, double*>{"setup_change_s", &machine.setup_change_s}}) {
+    if (!root[key].IsDefined()) continue;
+    *value = reader.number(root[key], key);
+    if (*value < 0) reader.fail(root[key], key, "must not be negative (seconds)");
+  }
+}
+
 }  // namespace
 
 Machine parseMachine(const std::string& yaml_text, const std::string& source) {
@@ -239,7 +249,8 @@ Machine parseMachine(const std::string& yaml_text, const std::string& source) {
   }
   const Reader reader(source);
   reader.expectMap(root, "");
-  reader.onlyKeys(root, "", {"name", "description", "kinematics", "geometry", "joints", "fixture"});
+  reader.onlyKeys(root, "", {"name", "description", "kinematics", "geometry", "joints", "fixture", "tool_change_s",
+                            "setup_change_s"});
   Machine machine;
   machine.source = source;
   machine.name = reader.text(root, "name", "");
@@ -248,6 +259,7 @@ Machine parseMachine(const std::string& yaml_text, const std::string& source) {
   machine.geometry = readGeometry(reader, root, machine.kind);
   machine.joints = readJoints(reader, root, machine.kind);
   readFixtures(reader, root, machine);
+  readChangeTimes(reader, root, machine);
   return machine;
 }
 

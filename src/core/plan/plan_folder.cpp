@@ -102,7 +102,7 @@ WrittenPlan writePlanFolder(const std::string& dir, const Part& part, const Plan
     written.program_error = "no program asked for";
   }
 
-  nlohmann::json j = planJson(part, plan);
+  nlohmann::json j = planJson(part, plan, options.program.machine);
   for (const auto& [stage, seconds] : extra_timings) j["timings"][stage] = seconds;
   j["timings"]["write"] = written.write_seconds;
   j["timings"]["post"] = written.post_seconds;

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "art2part/plan/plan_figures.h"
 #include "art2part/setup/setup_report.h"
 
 namespace art2part {
@@ -21,6 +22,40 @@ nlohmann::json partJson(const Part& part) {
           {"bounding_box", {{"min", vec(box.min)}, {"max", vec(box.max)}}}};
 }
 
+nlohmann::json cycleTimeJson(const CycleTime& t) {
+  return {{"total_s", t.total_s()},         {"cutting_s", t.cutting_s},        {"rapid_s", t.rapid_s},
+          {"tool_change_s", t.tool_change_s}, {"setup_change_s", t.setup_change_s}, {"cutting_mm", t.cutting_mm},
+          {"rapid_mm", t.rapid_mm},          {"tool_changes", t.tool_changes},  {"setup_changes", t.setup_changes}};
+}
+
+// The operation's machine time, and when simulated what it removed against its bound.
+void addFigures(nlohmann::json& j, const OperationFigures& f) {
+  j["time_s"] = f.time.total_s();
+  j["time"] = cycleTimeJson(f.time);
+  if (!f.simulated) return;
+  j["removed_mm3"] = f.removed_mm3;
+  j["material_mm3_per_min"] = f.mm3_per_min;
+  j["bound_s"] = f.bound_s;
+  j["bound_ratio"] = f.bound_ratio > 0 ? nlohmann::json(f.bound_ratio) : nlohmann::json(nullptr);
+  if (f.useless) {
+    j["useless"] = true;
+    j["useless_reason"] = f.useless_reason;
+  }
+}
+
+nlohmann::json machiningTimeJson(const PlanFigures& figures) {
+  nlohmann::json j = cycleTimeJson(figures.time.total);
+  j["machine"] = figures.machine;
+  j["roughing_s"] = figures.roughing.total_s();
+  j["finishing_s"] = figures.finishing.total_s();
+  j["roughing_removed_mm3"] = figures.roughing_removed_mm3;
+  j["roughing_bound_s"] = figures.roughing_bound_s;
+  j["roughing_bound_ratio"] = figures.roughing_bound_s > 0
+                                  ? nlohmann::json(figures.roughing.total_s() / figures.roughing_bound_s)
+                                  : nlohmann::json(nullptr);
+  return j;
+}
+
 nlohmann::json operationJson(const PlanResult& plan, const PlanOperation& op) {
   nlohmann::json j = {{"index", op.index}, {"setup", op.setup}, {"kind", op.kind}, {"tool", op.tool},
                       {"points", op.points}, {"stage", op.finishing ? "finishing" : "roughing"}};
@@ -28,12 +63,12 @@ nlohmann::json operationJson(const PlanResult& plan, const PlanOperation& op) {
     const RoughingOperation& r = plan.roughing.operations.at(op.source);
     int critical = 0;
     for (const RoughingLevel& l : r.levels) critical += l.critical ? 1 : 0;
-    j.update({{"length_mm", r.feed_mm}, {"rapid_mm", r.rapid_mm}, {"time_s", r.seconds}, {"levels", r.levels.size()},
+    j.update({{"length_mm", r.feed_mm}, {"rapid_mm", r.rapid_mm}, {"levels", r.levels.size()},
               {"critical_levels", critical}, {"ramps", r.ramps}, {"plunges", r.plunges}, {"retracts", r.retracts},
               {"plan_seconds", r.plan_seconds}, {"direct_shadow_levels", r.direct_levels}});
   } else {
     const FinishingOperation& f = plan.finishing.operations.at(op.source);
-    j.update({{"length_mm", f.feed_mm}, {"rapid_mm", f.rapid_mm}, {"time_s", f.seconds}, {"faces", f.faces},
+    j.update({{"length_mm", f.feed_mm}, {"rapid_mm", f.rapid_mm}, {"faces", f.faces},
               {"direction", vec(f.direction)}, {"plan_seconds", f.plan_seconds}});
     if (!f.note.empty()) j["note"] = f.note;
   }
@@ -118,8 +153,13 @@ nlohmann::json verificationJson(const VerificationReport& report) {
           {"seconds", report.seconds_total}};
 }
 
-nlohmann::json planJson(const Part& part, const PlanResult& plan) {
+nlohmann::json planJson(const Part& part, const PlanResult& plan, const Machine& machine) {
+  const PlanFigures figures = planFigures(plan, machine);
   nlohmann::json j = setupPlanJson(plan.setups, plan.visibility.directions);
+  for (std::size_t k = 0; k < j["setups"].size(); ++k) {
+    const auto time = figures.time.by_setup.find(static_cast<int>(k));
+    j["setups"][k]["time"] = cycleTimeJson(time == figures.time.by_setup.end() ? CycleTime{} : time->second);
+  }
   j["setup_seconds"] = j["seconds"];
   j.erase("seconds");
   j["part"] = partJson(part);
@@ -127,7 +167,11 @@ nlohmann::json planJson(const Part& part, const PlanResult& plan) {
   for (const Vec3& d : plan.visibility.directions.directions) directions.push_back(vec(d));
   j["directions"] = directions;
   j["operations"] = nlohmann::json::array();
-  for (const PlanOperation& op : plan.operations) j["operations"].push_back(operationJson(plan, op));
+  for (std::size_t i = 0; i < plan.operations.size(); ++i) {
+    nlohmann::json op = operationJson(plan, plan.operations[i]);
+    addFigures(op, figures.operations[i]);
+    j["operations"].push_back(op);
+  }
   j["roughing_region_failures"] = plan.roughing.region_failures;
   j["roughing_direct_shadow_levels"] = plan.roughing.direct_levels;
 
@@ -152,17 +196,12 @@ nlohmann::json planJson(const Part& part, const PlanResult& plan) {
   for (std::size_t h = 0; h < plan.holes.size(); ++h)
     holes.push_back(holeJson(plan.holes[h], h < plan.hole_methods.size() ? plan.hole_methods[h] : HoleMachining{}));
   j["holes"] = holes;
-  double roughing_s = 0;
-  for (const RoughingOperation& op : plan.roughing.operations) roughing_s += op.seconds;
   j["finishing"] = {{"faces_by_status", by_status},
                     {"tool_changes_per_setup", plan.finishing.tool_changes_per_setup},
                     {"tool_changes", plan.finishing.tool_changes},
-                    {"seconds", plan.finishing.seconds},
                     {"plan_seconds", plan.finishing.plan_seconds},
                     {"cancelled", plan.finishing.cancelled}};
-  j["machining_time"] = {{"roughing_s", roughing_s},
-                         {"finishing_s", plan.finishing.seconds},
-                         {"total_s", roughing_s + plan.finishing.seconds}};
+  j["machining_time"] = machiningTimeJson(figures);
   j["verification"] = plan.verified ? verificationJson(plan.verification) : nlohmann::json(nullptr);
   nlohmann::json timings = nlohmann::json::object();
   for (const auto& [stage, seconds] : plan.timings) timings[stage] = seconds;

@@ -218,8 +218,10 @@ std::string setupSheetHtml(const std::string& dir_name) {
     << ")</td></tr><tr><th>operations</th><td>" << plan.value("operations", json::array()).size() << "</td></tr>"
     << "<tr><th>machining time</th><td>" << duration(time.value("total_s", 0.0)) << " (roughing "
     << duration(time.value("roughing_s", 0.0)) << ", finishing " << duration(time.value("finishing_s", 0.0))
-    << ", tool changes of finishing included)</td></tr><tr><th>tool changes</th><td>"
-    << finishing.value("tool_changes", 0) << " in finishing</td></tr></table>\n";
+    << ", setup changes " << duration(time.value("setup_change_s", 0.0)) << "; cutting "
+    << duration(time.value("cutting_s", 0.0)) << ", rapids " << duration(time.value("rapid_s", 0.0))
+    << ")</td></tr><tr><th>tool changes</th><td>" << time.value("tool_changes", 0) << " ("
+    << finishing.value("tool_changes", 0) << " in finishing)</td></tr></table>\n";
   const json& setups = plan.value("setups", json::array());
   for (int k = 0; k < static_cast<int>(setups.size()); ++k) h << setupSection(dir, plan, setups[k], k, tools);
   h << "<h2>Verification (simulation of every operation in order)</h2>\n";

@@ -119,6 +119,8 @@ class Worker {
 
   const std::map<int, MoveFinding>& findings() const { return findings_; }
   std::int64_t poses() const { return poses_; }
+  // By op, by family: the length of material removed along this worker's rays, mm.
+  const std::map<int, std::array<double, 3>>& removedLength() const { return removed_length_; }
 
  private:
   bool owns(int row) const { return (row / kRowBlock) % threads_ == thread_; }
@@ -127,6 +129,7 @@ class Worker {
     const CutterLocation& end = path[run.last];
     const bool rapid = end.move == MoveKind::Rapid;
     const ToolPose to{end.tip, end.axis};
+    removed_here_ = &removed_length_[end.op];  // a run never spans two ops (straightRuns)
     if (run.placed) {
       finding_ = MoveFinding();
       for (int axis = 0; axis < 3; ++axis) cutPose(tool, {to, 0.0, 0.0}, rapid, axis);
@@ -250,6 +253,7 @@ class Worker {
     SpanList& spans = stock_.ray(r.axis, r.index);
     subtractSpan(spans, swept, &removed_);
     if (removed_.empty()) return;
+    for (const Span& removed : removed_) (*removed_here_)[r.axis] += removed.length();
     extents_[r.axis][r.index] = extentOf(spans);
     const Span part = part_extents_[r.axis][r.index];
     if (removed_.front().lo >= part.hi || removed_.back().hi <= part.lo) return;
@@ -292,6 +296,8 @@ class Worker {
   std::map<int, MoveFinding> findings_;
   std::int64_t poses_ = 0;
   SpanList removed_;
+  std::map<int, std::array<double, 3>> removed_length_;
+  std::array<double, 3>* removed_here_ = nullptr;  // the op of the run being swept
 };
 
 std::vector<const ToolSolid*> toolOfEveryRow(const Toolpath& path, const std::map<std::string, ToolSolid>& tools) {
@@ -367,8 +373,13 @@ SweepResult sweepToolpath(Stock& stock, const MeshDexels& part, const PartDistan
     workers[0].run(path, row_tools);
     for (std::thread& t : running) t.join();
   }
-  for (const Worker& w : workers)
+  for (const Worker& w : workers) {
     for (const auto& [row, finding] : w.findings()) mergeFinding(result.findings[row], finding);
+    for (const auto& [op, length] : w.removedLength()) {
+      double& volume = result.removed_by_op_mm3[op];
+      for (int axis = 0; axis < 3; ++axis) volume += length[axis] * stock.lattice.cellArea(axis) / 3.0;
+    }
+  }
   result.poses = workers[0].poses();
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -72,7 +72,8 @@ bool continues(const Toolpath& path, std::size_t m) {
 // Whether move m + 1 carries on along the line of the run that starts with move `first`.
 bool carriesOn(const Toolpath& path, std::size_t first, std::size_t m) {
   const CutterLocation &next = path[m + 1], &start = path[first];
-  if (!continues(path, m + 1) || next.move != start.move || next.axis != start.axis) return false;
+  if (!continues(path, m + 1) || next.op != start.op || next.move != start.move || next.axis != start.axis)
+    return false;
   const Vec3 along = start.tip - path[first - 1].tip, d = next.tip - path[m].tip;
   return d.dot(along) > 0.0 && d.cross(along).norm() <= 1e-9 * d.norm() * along.norm();
 }

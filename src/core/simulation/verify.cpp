@@ -177,6 +177,7 @@ VerificationReport verifyToolpath(const Mesh& part_mesh, const std::vector<int>&
   r.cancelled = sweep.cancelled ||
                 !reportProgress(progress, "verification", kSweepEnd, "measuring what is left of the stock");
   r.poses = sweep.poses;
+  r.removed_by_op_mm3 = sweep.removed_by_op_mm3;
   r.seconds_sweep = sweep.seconds;
   r.moves_per_second = r.moves / std::max(sweep.seconds, 1e-9);
   listFindings(r, sweep.findings, path, options.tolerance, options.face_allowance, triangle_face, distance,

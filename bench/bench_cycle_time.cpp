@@ -1,0 +1,100 @@
+// Cycle-time bench (issue 19): the whole plan as `art2part plan` makes it (default options, 3-axis, on the default
+// machine config/machines/vmc_3axis.yaml), timed by the cycle-time model (post/cycle_time.h) and judged by the
+// simulation: per operation its time (cutting, rapid, tool change), the volume it removed, material per minute, its
+// bound (that volume at its tool's library rate) and the ratio; per part the roughing time against the sum of its
+// operations' bounds and the rapid length against the cutting length (the issue's figures: at most 1.5x and 0.3x).
+//   bench_cycle_time [PART ...] [--no-finish]   (file names in shared/parts, or "all"; default featuretype.STEP)
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "art2part/kinematics/machine.h"
+#include "art2part/plan/plan_figures.h"
+
+using namespace art2part;
+
+namespace {
+
+const std::string kParts = ART2PART_SHARED_PARTS;
+const std::string kConfig = std::string(ART2PART_SOURCE_DIR) + "/config";
+const char* kAll[] = {"nist_ctc_01_asme1_rd.stp", "nist_ctc_02_asme1_rc.stp", "ANC101.stp", "featuretype.STEP",
+                      "ktoolcav.stl", "mount_rush.stl", "Ailette001Solid-nohole-decimated-smoothed.stl"};
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+double ratio(double a, double b) { return b > 0 ? a / b : 0.0; }
+
+// time / bound, or "-" without one (a bound under kLeastBoundSeconds).
+std::string ratioText(double ratio) {
+  if (ratio <= 0) return "-";
+  char text[32];
+  std::snprintf(text, sizeof text, ratio > 999 ? ">999" : "%.2f", ratio);
+  return text;
+}
+
+void printOperation(const PlanOperation& op, const OperationFigures& f) {
+  std::printf("  %3d %2d %-16s %-9s %8.0f %7.0f %5.0f %8.1f %8.1f %9.1f %8.1f %7.0f %6s%s\n", op.index, op.setup,
+              op.kind.c_str(), op.tool.c_str(), f.time.cutting_s, f.time.rapid_s, f.time.tool_change_s,
+              f.time.cutting_mm / 1000, f.time.rapid_mm / 1000, f.removed_mm3 / 1000, f.mm3_per_min / 1000, f.bound_s,
+              ratioText(f.bound_ratio).c_str(), f.useless ? "  USELESS" : "");
+}
+
+void benchPart(const std::string& name, const ToolLibrary& library, const Machine& machine, bool finish) {
+  const Part part = loadPart(kParts + "/" + name);
+  PlanOptions options;
+  options.finish = finish;
+  options.verification.stock_margin = options.roughing.stock.margin;
+  const auto start = std::chrono::steady_clock::now();
+  const PlanResult plan = planPart(part, library, options);
+  const double plan_seconds = secondsSince(start);
+  const PlanFigures figures = planFigures(plan, machine);
+  std::printf("\n%s: %zu setups, %zu operations, planned in %.1f s, verification %s (%d gouges, %d collisions)\n",
+              name.c_str(), plan.setups.setups.size(), plan.operations.size(), plan_seconds,
+              plan.verification.passed() ? "passed" : "FAILED", plan.verification.gouges,
+              plan.verification.collisions);
+  std::printf("  %3s %2s %-16s %-9s %8s %7s %5s %8s %8s %9s %8s %7s %6s\n", "op", "su", "kind", "tool", "cut s",
+              "rapid s", "tc s", "cut m", "rapid m", "rem cm3", "cm3/min", "bound s", "ratio");
+  for (std::size_t i = 0; i < plan.operations.size(); ++i) printOperation(plan.operations[i], figures.operations[i]);
+  double old_roughing = 0;  // the planners' own estimates (feed and rapid lengths at constant rates)
+  for (const RoughingOperation& op : plan.roughing.operations) old_roughing += op.seconds;
+  const CycleTime& r = figures.roughing;
+  const CycleTime& t = figures.time.total;
+  std::printf("  roughing:  %.0f s (%.2f h) = cutting %.0f + rapid %.0f + tool change %.0f s; bound %.0f s (%.2f h); "
+              "ratio %.2f; rapid/cutting length %.2f (%.0f m / %.0f m); removed %.0f cm3\n",
+              r.total_s(), r.total_s() / 3600, r.cutting_s, r.rapid_s, r.tool_change_s, figures.roughing_bound_s,
+              figures.roughing_bound_s / 3600, ratio(r.total_s(), figures.roughing_bound_s),
+              ratio(r.rapid_mm, r.cutting_mm), r.rapid_mm / 1000, r.cutting_mm / 1000,
+              figures.roughing_removed_mm3 / 1000);
+  std::printf("  finishing: %.0f s = cutting %.0f + rapid %.0f + tool change %.0f s; rapid/cutting length %.2f\n",
+              figures.finishing.total_s(), figures.finishing.cutting_s, figures.finishing.rapid_s,
+              figures.finishing.tool_change_s, ratio(figures.finishing.rapid_mm, figures.finishing.cutting_mm));
+  std::printf("  part:      %.0f s (%.2f h) = cutting %.0f + rapid %.0f + %d tool changes %.0f + %d setup changes %.0f s;"
+              " rapid/cutting length %.2f; old estimate %.0f s (roughing %.0f + finishing %.0f)\n",
+              t.total_s(), t.total_s() / 3600, t.cutting_s, t.rapid_s, t.tool_changes, t.tool_change_s,
+              t.setup_changes, t.setup_change_s, ratio(t.rapid_mm, t.cutting_mm),
+              old_roughing + plan.finishing.seconds, old_roughing, plan.finishing.seconds);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
+  std::vector<std::string> parts;
+  bool finish = true;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--no-finish") finish = false;
+    else if (arg == "all") parts.assign(std::begin(kAll), std::end(kAll));
+    else parts.push_back(arg);
+  }
+  if (parts.empty()) parts.push_back("featuretype.STEP");
+  const ToolLibrary library = loadToolLibrary(kConfig + "/tools.yaml");
+  const Machine machine = loadMachine(kConfig + "/machines/vmc_3axis.yaml");
+  std::printf("cycle time on %s; bound = removed volume at the tool's library rate (max_stepdown x max_stepover x "
+              "feed); ratio = time / bound\n", machine.name.c_str());
+  for (const std::string& name : parts) benchPart(name, library, machine, finish);
+  return 0;
+}

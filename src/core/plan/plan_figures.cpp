@@ -1,0 +1,82 @@
+// A plan's cycle time and each operation's removal against its bound (plan_figures.h).
+#include "art2part/plan/plan_figures.h"
+
+#include <cstdio>
+
+namespace art2part {
+
+namespace {
+
+// Per setup: the part frame turned into the machine's axes, the setup frame along the table's (fixtureFacingUp).
+std::map<int, Eigen::Matrix3d> setupRotations(const SetupPlan& setups) {
+  std::map<int, Eigen::Matrix3d> rotations;
+  for (int k = 0; k < static_cast<int>(setups.setups.size()); ++k) {
+    const SetupFrame& f = setups.setups[k].frame;
+    Eigen::Matrix3d r;
+    r.row(0) = f.x.transpose();
+    r.row(1) = f.y.transpose();
+    r.row(2) = f.z.transpose();
+    rotations[k] = r;
+  }
+  return rotations;
+}
+
+const Tool* findTool(const std::vector<Tool>& tools, const std::string& id) {
+  for (const Tool& t : tools)
+    if (t.id == id) return &t;
+  return nullptr;
+}
+
+std::string uselessReason(double removed, double roughing_removed) {
+  char text[200];
+  std::snprintf(text, sizeof text, "removes %.0f mm3, %.2f%% of the %.0f mm3 the roughing removes (under %.2g%%)",
+                removed, 100 * removed / roughing_removed, roughing_removed, 100 * kUselessRemovalShare);
+  return text;
+}
+
+}  // namespace
+
+double libraryRemovalRate(const Tool& tool) {
+  const double stepdown = tool.max_stepdown > 0 ? tool.max_stepdown : tool.diameter / 2;
+  const double stepover = tool.max_stepover > 0 ? tool.max_stepover : 0.4 * tool.diameter;
+  return stepdown * stepover * tool.feed_mm_min;
+}
+
+PlanFigures planFigures(const PlanResult& plan, const Machine& machine) {
+  PlanFigures figures;
+  figures.limits = motionLimits(machine);
+  figures.machine = machine.joints.empty() ? "default" : machine.name;
+  figures.time = cycleTime(plan.toolpath, plan.tools, figures.limits, setupRotations(plan.setups));
+  for (const PlanOperation& op : plan.operations) {
+    OperationFigures f;
+    f.index = op.index;
+    f.finishing = op.finishing;
+    const auto time = figures.time.by_op.find(op.index);
+    if (time != figures.time.by_op.end()) f.time = time->second;
+    (op.finishing ? figures.finishing : figures.roughing) += f.time;
+    if (plan.verified) {
+      f.simulated = true;
+      const auto removed = plan.verification.removed_by_op_mm3.find(op.index);
+      f.removed_mm3 = removed == plan.verification.removed_by_op_mm3.end() ? 0.0 : removed->second;
+      if (f.time.motion_s() > 0) f.mm3_per_min = f.removed_mm3 / (f.time.motion_s() / 60);
+      const Tool* tool = findTool(plan.tools, op.tool);
+      const double rate = tool ? libraryRemovalRate(*tool) : 0.0;
+      if (rate > 0) f.bound_s = 60 * f.removed_mm3 / rate;
+      if (f.bound_s >= kLeastBoundSeconds) f.bound_ratio = f.time.total_s() / f.bound_s;
+      if (!op.finishing) {
+        figures.roughing_removed_mm3 += f.removed_mm3;
+        figures.roughing_bound_s += f.bound_s;
+      }
+    }
+    figures.operations.push_back(f);
+  }
+  for (OperationFigures& f : figures.operations) {
+    if (!f.simulated || f.finishing || figures.roughing_removed_mm3 <= 0) continue;
+    if (f.removed_mm3 >= kUselessRemovalShare * figures.roughing_removed_mm3) continue;
+    f.useless = true;
+    f.useless_reason = uselessReason(f.removed_mm3, figures.roughing_removed_mm3);
+  }
+  return figures;
+}
+
+}  // namespace art2part

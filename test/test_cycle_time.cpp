@@ -1,0 +1,262 @@
+// Cycle time (post/cycle_time.h) on hand-made paths with known answers, the machine file's change times, and the
+// plan's figures (plan_figures.h): each operation's removed volume, measured by the simulation, sums to what the
+// verification removed.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+#include <string>
+
+#include "art2part/kinematics/machine.h"
+#include "art2part/plan/plan_figures.h"
+#include "art2part/plan/plan_json.h"
+#include "art2part/post/cycle_time.h"
+#include "art2part/post/joint_trajectory.h"
+#include "test_solids.h"
+
+namespace art2part {
+namespace {
+
+const std::string kConfig = std::string(ART2PART_SOURCE_DIR) + "/config";
+
+Tool millWithFeed(const std::string& id, double feed_mm_min, double plunge_mm_min) {
+  Tool tool;
+  tool.id = id;
+  tool.diameter = 10;
+  tool.flute_length = 20;
+  tool.shank_diameter = 10;
+  tool.stickout = 40;
+  tool.feed_mm_min = feed_mm_min;
+  tool.plunge_mm_min = plunge_mm_min;
+  return tool;
+}
+
+CutterLocation at(const Vec3& tip, MoveKind move, const std::string& tool = "t1", int op = 0, int setup = 0) {
+  CutterLocation c = cutterLocation(setup, tool, move, tip, Vec3::UnitZ());
+  c.op = op;
+  return c;
+}
+
+MotionLimits uniformLimits(double velocity, double acceleration) {
+  MotionLimits limits;
+  limits.feed_velocity = limits.rapid_velocity = Vec3::Constant(velocity);
+  limits.acceleration = Vec3::Constant(acceleration);
+  return limits;
+}
+
+TEST(CycleTime, LongStraightFeedTakesItsLengthOverTheFeed) {
+  const Tool tool = millWithFeed("t1", 1200, 300);  // 20 mm/s
+  const Toolpath path = {at(Vec3(0, 0, 0), MoveKind::Rapid), at(Vec3(1000, 0, 0), MoveKind::Feed)};
+  const PathTime time = cycleTime(path, {tool}, uniformLimits(400, 3000));
+  // The trapezoid: L / v plus the time lost accelerating and stopping, v / a.
+  EXPECT_NEAR(time.total.cutting_s, 1000.0 / 20 + 20.0 / 3000, 1e-9);
+  EXPECT_NEAR(time.total.cutting_s, 1000.0 / 20, 0.001 * 50);
+  EXPECT_DOUBLE_EQ(time.total.cutting_mm, 1000);
+  EXPECT_EQ(time.total.rapid_s, 0);
+}
+
+TEST(CycleTime, ShortMoveNeverReachesFullSpeed) {
+  const Tool tool = millWithFeed("t1", 1200, 300);
+  const Toolpath path = {at(Vec3(0, 0, 0), MoveKind::Rapid), at(Vec3(1, 0, 0), MoveKind::Rapid)};
+  const PathTime time = cycleTime(path, {tool}, uniformLimits(400, 3000));
+  // Accelerate over half, decelerate over the other half: 2 sqrt(L / a); the peak sqrt(a L) = 55 mm/s < 400.
+  EXPECT_NEAR(time.total.rapid_s, 2 * std::sqrt(1.0 / 3000), 1e-12);
+}
+
+TEST(CycleTime, DiagonalMoveIsHeldByEachAxisLimit) {
+  const Tool tool = millWithFeed("t1", 1200, 300);
+  MotionLimits limits = uniformLimits(400, 3000);
+  limits.rapid_velocity = Vec3(100, 400, 400);  // X is slow: a 45 deg rapid runs at 100 / cos 45 along the path
+  const double length = 1000;
+  const Toolpath path = {at(Vec3(0, 0, 0), MoveKind::Rapid),
+                         at(Vec3(length, length, 0) / std::sqrt(2.0), MoveKind::Rapid)};
+  const double speed = 100 * std::sqrt(2.0), accel = 3000 * std::sqrt(2.0);
+  EXPECT_NEAR(cycleTime(path, {tool}, limits).total.rapid_s, length / speed + speed / accel, 1e-9);
+}
+
+TEST(CycleTime, RightAngleCornerIsSlowerThanAStraightLine) {
+  const Tool tool = millWithFeed("t1", 1200, 300);
+  const MotionLimits limits = uniformLimits(400, 3000);
+  const Toolpath straight = {at(Vec3(0, 0, 0), MoveKind::Rapid), at(Vec3(50, 0, 0), MoveKind::Rapid),
+                             at(Vec3(100, 0, 0), MoveKind::Rapid)};
+  const Toolpath corner = {at(Vec3(0, 0, 0), MoveKind::Rapid), at(Vec3(50, 0, 0), MoveKind::Rapid),
+                           at(Vec3(50, 50, 0), MoveKind::Rapid)};
+  const double line = cycleTime(straight, {tool}, limits).total.rapid_s;
+  const double turned = cycleTime(corner, {tool}, limits).total.rapid_s;
+  // A straight continuation is one move: 100 mm at 400 mm/s from rest to rest.
+  EXPECT_NEAR(line, trapezoidSeconds(100, 0, 0, 400, 3000), 1e-9);
+  // The corner is passed at the speed a 5 um blend allows (about 9 mm/s): nearly two moves from rest to rest.
+  EXPECT_GT(turned, 1.2 * line);
+  EXPECT_LE(turned, 2 * trapezoidSeconds(50, 0, 0, 400, 3000) + 1e-9);
+  EXPECT_GT(turned, 0.95 * 2 * trapezoidSeconds(50, 0, 0, 400, 3000));
+  // A looser blend tolerance passes the corner faster.
+  MotionLimits loose = limits;
+  loose.blend_tolerance = 0.5;
+  EXPECT_LT(cycleTime(corner, {tool}, loose).total.rapid_s, turned);
+}
+
+// The model applies the post's trajectory rules in the part frame: on a 3-axis machine whose part frame is its table
+// frame the two agree on a path of rapids, feeds and corners.
+TEST(CycleTime, AgreesWithThePostsTrajectory) {
+  const Machine machine = loadMachine(kConfig + "/machines/vmc_3axis.yaml");
+  const Tool tool = millWithFeed("t1", 1200, 300);
+  const std::vector<Vec3> tips = {Vec3(0, 0, 100), Vec3(0, 0, 50),   Vec3(100, 0, 50),  Vec3(100, 5, 50),
+                                  Vec3(0, 5, 50),   Vec3(0, 10, 50), Vec3(100, 10, 50), Vec3(100, 10, 100)};
+  Toolpath path;
+  std::vector<JointWaypoint> waypoints;
+  for (std::size_t i = 0; i < tips.size(); ++i) {
+    const MoveKind move = i < 2 || i + 1 == tips.size() ? MoveKind::Rapid : MoveKind::Feed;
+    path.push_back(at(tips[i], move));
+    JointWaypoint w;
+    w.joints.linear = tips[i];  // tool length 0: the gauge point is the tip
+    w.move = move;
+    w.feed_mm_min = tool.feed_mm_min;
+    waypoints.push_back(w);
+  }
+  const double trajectory = parameterizeTrajectory(machine, waypoints).duration();
+  const double model = cycleTime(path, {tool}, motionLimits(machine)).total.motion_s();
+  EXPECT_NEAR(model, trajectory, 0.002 * trajectory);  // 0.01 % on this path
+}
+
+TEST(CycleTime, PlungeRunsAtThePlungeFeed) {
+  const Tool tool = millWithFeed("t1", 1200, 300);  // plunge 5 mm/s
+  const Toolpath path = {at(Vec3(0, 0, 10), MoveKind::Rapid), at(Vec3(0, 0, 0), MoveKind::Feed)};
+  EXPECT_NEAR(cycleTime(path, {tool}, uniformLimits(400, 3000)).total.cutting_s, 10.0 / 5 + 5.0 / 3000, 1e-9);
+  // Going up the axis, or down a ramp shallower than the plunge angle, is no plunge: the cutting feed (as the post).
+  const Toolpath up = {at(Vec3(0, 0, 0), MoveKind::Rapid), at(Vec3(0, 0, 10), MoveKind::Feed)};
+  EXPECT_NEAR(cycleTime(up, {tool}, uniformLimits(400, 3000)).total.cutting_s, 10.0 / 20 + 20.0 / 3000, 1e-9);
+  const Toolpath ramp = {at(Vec3(0, 0, 10), MoveKind::Rapid), at(Vec3(10 * std::sqrt(3.0), 0, 0), MoveKind::Feed)};
+  const double ramp_accel = 3000 / (std::sqrt(3.0) / 2);  // X, the larger component, limits it
+  EXPECT_NEAR(cycleTime(ramp, {tool}, uniformLimits(400, 3000)).total.cutting_s, 20.0 / 20 + 20.0 / ramp_accel, 1e-9);
+}
+
+TEST(CycleTime, ToolChangeCountedOncePerChange) {
+  const std::vector<Tool> tools = {millWithFeed("t1", 1200, 300), millWithFeed("t2", 600, 200)};
+  MotionLimits limits = uniformLimits(400, 3000);
+  limits.tool_change_s = 7;
+  limits.setup_change_s = 300;
+  const Toolpath path = {at(Vec3(0, 0, 0), MoveKind::Rapid, "t1", 0), at(Vec3(10, 0, 0), MoveKind::Feed, "t1", 0),
+                         at(Vec3(20, 0, 0), MoveKind::Feed, "t1", 0), at(Vec3(0, 0, 0), MoveKind::Rapid, "t2", 1),
+                         at(Vec3(0, 10, 0), MoveKind::Feed, "t2", 1), at(Vec3(0, 0, 0), MoveKind::Rapid, "t1", 2, 1),
+                         at(Vec3(5, 0, 0), MoveKind::Feed, "t1", 2, 1)};
+  const PathTime time = cycleTime(path, tools, limits);
+  // The first load, t1 -> t2, t2 -> t1; one change of clamping.
+  EXPECT_EQ(time.total.tool_changes, 3);
+  EXPECT_DOUBLE_EQ(time.total.tool_change_s, 21);
+  EXPECT_EQ(time.total.setup_changes, 1);
+  EXPECT_DOUBLE_EQ(time.total.setup_change_s, 300);
+  for (int op = 0; op < 3; ++op) EXPECT_EQ(time.by_op.at(op).tool_changes, 1) << op;
+  EXPECT_EQ(time.by_op.at(2).setup_changes, 0);  // a setup change belongs to the setup, not to an operation
+  EXPECT_EQ(time.by_setup.at(1).setup_changes, 1);
+  // Each chain starts at rest where its tool was put: no motion is timed across a change.
+  EXPECT_DOUBLE_EQ(time.total.cutting_mm, 20 + 10 + 5);
+  EXPECT_DOUBLE_EQ(time.total.rapid_mm, 0);
+  EXPECT_NEAR(time.total.total_s(), time.total.cutting_s + 21 + 300, 1e-12);
+  double ops = 0;
+  for (const auto& [op, t] : time.by_op) ops += t.total_s();
+  EXPECT_NEAR(ops + 300, time.total.total_s(), 1e-9);
+}
+
+TEST(CycleTime, AxisTurnHeldByTheRotaryLimits) {
+  const Tool tool = millWithFeed("t1", 1200, 300);
+  MotionLimits limits = uniformLimits(400, 3000);
+  limits.rotary_velocity = 1.0;  // rad/s
+  limits.rotary_acceleration = 4.0;
+  const double quarter = std::acos(0.0);
+  Toolpath path = {at(Vec3(0, 0, 0), MoveKind::Rapid), at(Vec3(0, 0, 0), MoveKind::Rapid)};
+  path[1].axis = Vec3::UnitX();
+  EXPECT_NEAR(cycleTime(path, {tool}, limits).total.rapid_s, trapezoidSeconds(quarter, 0, 0, 1.0, 4.0), 1e-12);
+  // Turning while it moves 1 mm: the rotary joints, not the slides, set the pace.
+  path[1].tip = Vec3(1, 0, 0);
+  EXPECT_GT(cycleTime(path, {tool}, limits).total.rapid_s, quarter / 1.0);
+  // Without rotary joints the turn costs nothing (3-axis model).
+  EXPECT_NEAR(cycleTime(path, {tool}, uniformLimits(400, 3000)).total.rapid_s, 2 * std::sqrt(1.0 / 3000), 1e-12);
+}
+
+TEST(CycleTime, BadInputIsRefused) {
+  const Toolpath path = {at(Vec3(0, 0, 0), MoveKind::Rapid), at(Vec3(1, 0, 0), MoveKind::Feed)};
+  EXPECT_THROW(cycleTime(path, {millWithFeed("other", 1200, 300)}, MotionLimits{}), InputError);
+  EXPECT_THROW(cycleTime(path, {millWithFeed("t1", 0, 300)}, MotionLimits{}), InputError);
+  MotionLimits bad;
+  bad.acceleration.x() = 0;
+  EXPECT_THROW(cycleTime(path, {millWithFeed("t1", 1200, 300)}, bad), InputError);
+}
+
+TEST(CycleTime, MachineFileGivesItsLimitsAndChangeTimes) {
+  const Machine vmc = loadMachine(kConfig + "/machines/vmc_3axis.yaml");
+  const MotionLimits limits = motionLimits(vmc);
+  EXPECT_DOUBLE_EQ(limits.rapid_velocity.x(), vmc.joints[0].rapid_velocity);
+  EXPECT_DOUBLE_EQ(limits.acceleration.z(), vmc.joints[2].max_acceleration);
+  EXPECT_DOUBLE_EQ(limits.tool_change_s, vmc.tool_change_s);
+  EXPECT_EQ(limits.rotary_velocity, 0);
+  const Machine five = loadMachine(kConfig + "/machines/trunnion_5axis.yaml");
+  EXPECT_GT(motionLimits(five).rotary_velocity, 0);
+  // Left out: the defaults; given: read; negative: refused naming the key.
+  const std::string base = "name: m\nkinematics: trivkins\njoints:\n"
+                           "  - {name: X, min: -1, max: 1, max_velocity: 1, max_acceleration: 1}\n"
+                           "  - {name: Y, min: -1, max: 1, max_velocity: 1, max_acceleration: 1}\n"
+                           "  - {name: Z, min: -1, max: 1, max_velocity: 1, max_acceleration: 1}\n";
+  EXPECT_DOUBLE_EQ(parseMachine(base, "m").tool_change_s, kDefaultToolChangeSeconds);
+  EXPECT_DOUBLE_EQ(parseMachine(base + "setup_change_s: 120\n", "m").setup_change_s, 120);
+  try {
+    parseMachine(base + "tool_change_s: -3\n", "m");
+    FAIL() << "a negative tool change time was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("tool_change_s"), std::string::npos) << e.what();
+  }
+  // No machine: the documented default.
+  EXPECT_DOUBLE_EQ(motionLimits(Machine{}).rapid_velocity.x(), MotionLimits{}.rapid_velocity.x());
+}
+
+TEST(PlanFigures, RemovedVolumePerOperationSumsToTheSimulation) {
+  const Part part = test::stepPart(test::pocketedBlock(Vec3(0, 0, 0), Vec3(60, 40, 20), 30, 20, 8, 4), "pocket");
+  const ToolLibrary library = loadToolLibrary(kConfig + "/tools.yaml");
+  PlanOptions options;
+  options.visibility.level = 2;
+  const PlanResult plan = planPart(part, library, options);
+  ASSERT_TRUE(plan.verified);
+  ASSERT_FALSE(plan.operations.empty());
+  double sum = 0;
+  for (const auto& [op, removed] : plan.verification.removed_by_op_mm3) {
+    EXPECT_GE(removed, 0) << "op " << op;
+    sum += removed;
+  }
+  const double removed = plan.verification.removed_volume_mm3;
+  ASSERT_GT(removed, 0);
+  EXPECT_NEAR(sum, removed, 1e-6 * removed);
+
+  const Machine machine = loadMachine(kConfig + "/machines/vmc_3axis.yaml");
+  const PlanFigures figures = planFigures(plan, machine);
+  ASSERT_EQ(figures.operations.size(), plan.operations.size());
+  EXPECT_GT(figures.operations.front().removed_mm3, 0);  // the first roughing clears the most
+  EXPECT_GT(figures.roughing_bound_s, 0);
+
+  // Useless: a roughing operation under the share of the roughing's volume, with its reason; finishing never.
+  for (const OperationFigures& f : figures.operations) {
+    const bool under = f.removed_mm3 < kUselessRemovalShare * figures.roughing_removed_mm3;
+    EXPECT_EQ(f.useless, !f.finishing && under) << "operation " << f.index;
+    EXPECT_EQ(f.useless_reason.empty(), !f.useless) << "operation " << f.index;
+  }
+
+  const nlohmann::json j = planJson(part, plan, machine);
+  double ops = 0;
+  for (const nlohmann::json& op : j["operations"]) {
+    ASSERT_TRUE(op.contains("removed_mm3")) << op.dump();
+    EXPECT_GT(op["time_s"].get<double>(), 0);
+    EXPECT_NEAR(op["time_s"].get<double>(), op["time"]["cutting_s"].get<double>() + op["time"]["rapid_s"].get<double>() +
+                                                 op["time"]["tool_change_s"].get<double>(), 1e-9);
+    ops += op["time_s"].get<double>();
+  }
+  const nlohmann::json& total = j["machining_time"];
+  EXPECT_NEAR(total["total_s"].get<double>(), ops + total["setup_change_s"].get<double>(), 1e-6);
+  std::set<int> setups_cut;
+  for (const CutterLocation& c : plan.toolpath) setups_cut.insert(c.setup);
+  EXPECT_EQ(total["setup_changes"].get<int>(), static_cast<int>(setups_cut.size()) - 1);  // the path runs setup by setup
+  EXPECT_EQ(total["machine"], "vmc_3axis");
+  double setups = 0;
+  for (const nlohmann::json& s : j["setups"]) setups += s["time"]["total_s"].get<double>();
+  EXPECT_NEAR(setups, total["total_s"].get<double>(), 1e-6);
+}
+
+}  // namespace
+}  // namespace art2part
