@@ -3,12 +3,14 @@
 
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <random>
 #include <vector>
 #include <string>
 #include <unistd.h>
 
 #include "art2part/geometry/mesh.h"
+#include "art2part/tooling/tool.h"
 
 namespace art2part::test {
 
@@ -50,6 +52,25 @@ inline void flipAll(Mesh& m) {
 inline std::string tempDir() {
   char name[] = "/tmp/art2part-test-XXXXXX";
   return mkdtemp(name);
+}
+
+// A file's bytes (empty when it cannot be read).
+inline std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// The tests' 6 mm flat end mill: 25 mm of flutes, 40 mm stickout, a 30 x 40 mm holder.
+inline Tool flat6() {
+  Tool t;
+  t.id = "flat6";
+  t.type = ToolType::Flat;
+  t.diameter = 6;
+  t.flute_length = 25;
+  t.shank_diameter = 6;
+  t.stickout = 40;
+  t.holder = {{30, 40}};
+  return t;
 }
 
 inline void writeText(const std::string& path, const std::string& text) {

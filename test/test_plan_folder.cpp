@@ -22,11 +22,6 @@ namespace fs = std::filesystem;
 
 const std::string kConfig = std::string(ART2PART_SOURCE_DIR) + "/config";
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
 int count(const std::string& text, const std::string& what) {
   int n = 0;
   for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
@@ -68,7 +63,7 @@ TEST(PlanFolder, WritesTheContractAndReadsItBack) {
   EXPECT_EQ(summary["setups"], plan.setups.setups.size());
 
   // The sheet: every setup with its picture, every operation by its number, nothing fetched from elsewhere.
-  const std::string html = slurp(fs::path(dir) / "setup_sheet.html");
+  const std::string html = test::slurp(fs::path(dir) / "setup_sheet.html");
   for (std::size_t k = 0; k < plan.setups.setups.size(); ++k)
     EXPECT_NE(html.find("<h2>Setup " + std::to_string(k) + ":"), std::string::npos) << "setup " << k;
   for (const PlanOperation& op : plan.operations)

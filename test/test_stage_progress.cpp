@@ -144,17 +144,6 @@ CutterLocation at(MoveKind move, double x, double y, double z) {
   return c;
 }
 
-Tool flat6() {
-  Tool t;
-  t.id = "flat6";
-  t.type = ToolType::Flat;
-  t.diameter = 6;
-  t.flute_length = 25;
-  t.shank_diameter = 6;
-  t.stickout = 40;
-  t.holder = {{30, 40}};
-  return t;
-}
 
 // Zig-zag facing of the 2 mm of stock over a 40 x 20 x 10 block in 0.25 mm layers at a 0.12 mm lattice: seconds of
 // sweeping.
@@ -184,7 +173,7 @@ const Mesh kBlock = test::box(Vec3(0, 0, 0), Vec3(40, 20, 10));
 TEST(VerificationProgress, ReportsAtLeastEverySecondWithTheShareOfTheMoves) {
   Recorder recorder;
   VerificationReport report;
-  EXPECT_NO_THROW(report = verifyToolpath(kBlock, {}, facing(), {flat6()}, fineLattice(), nullptr, recorder.sink()));
+  EXPECT_NO_THROW(report = verifyToolpath(kBlock, {}, facing(), {test::flat6()}, fineLattice(), nullptr, recorder.sink()));
   const double returned = since(recorder.start);
   EXPECT_FALSE(report.cancelled);
   EXPECT_TRUE(report.passed());
@@ -195,7 +184,7 @@ TEST(VerificationProgress, ReportsAtLeastEverySecondWithTheShareOfTheMoves) {
     EXPECT_GE(during_sweep, 1) << "a sweep of " << returned << " s with no report of the moves done";
   }
   // The same figures as without a sink.
-  const VerificationReport quiet = verifyToolpath(kBlock, {}, facing(), {flat6()}, fineLattice());
+  const VerificationReport quiet = verifyToolpath(kBlock, {}, facing(), {test::flat6()}, fineLattice());
   EXPECT_DOUBLE_EQ(quiet.removed_volume_mm3, report.removed_volume_mm3);
   EXPECT_DOUBLE_EQ(quiet.leftover_volume_mm3, report.leftover_volume_mm3);
 }
@@ -204,7 +193,7 @@ TEST(VerificationProgress, StopsAfterTheFirstReportWithoutThrowing) {
   int reports = 0;
   VerificationReport report;
   const auto start = Clock::now();
-  EXPECT_NO_THROW(report = verifyToolpath(kBlock, {}, facing(), {flat6()}, fineLattice(), nullptr,
+  EXPECT_NO_THROW(report = verifyToolpath(kBlock, {}, facing(), {test::flat6()}, fineLattice(), nullptr,
                                           [&](const ProgressReport&) { return ++reports < 1; }));
   EXPECT_LT(since(start), 1.0);
   EXPECT_TRUE(report.cancelled);
@@ -216,7 +205,7 @@ TEST(VerificationProgress, StopsWithinASecondInTheMiddleOfTheSweep) {
   double asked_at = -1;
   const auto start = Clock::now();
   VerificationReport report;
-  EXPECT_NO_THROW(report = verifyToolpath(kBlock, {}, facing(), {flat6()}, fineLattice(), nullptr,
+  EXPECT_NO_THROW(report = verifyToolpath(kBlock, {}, facing(), {test::flat6()}, fineLattice(), nullptr,
                                           [&](const ProgressReport& p) {
                                             if (asked_at < 0 && p.fraction > 0 && p.fraction < 0.9)
                                               asked_at = since(start);
@@ -227,7 +216,7 @@ TEST(VerificationProgress, StopsWithinASecondInTheMiddleOfTheSweep) {
   EXPECT_LT(returned - asked_at, 1.0);
   EXPECT_TRUE(report.cancelled);
   EXPECT_FALSE(report.passed());
-  EXPECT_LT(report.removed_volume_mm3, verifyToolpath(kBlock, {}, facing(), {flat6()}, fineLattice()).removed_volume_mm3)
+  EXPECT_LT(report.removed_volume_mm3, verifyToolpath(kBlock, {}, facing(), {test::flat6()}, fineLattice()).removed_volume_mm3)
       << "stopped part way, it removed less than the whole path";
 }
 

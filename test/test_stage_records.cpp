@@ -20,11 +20,6 @@ namespace fs = std::filesystem;
 
 const std::string kConfig = std::string(ART2PART_SOURCE_DIR) + "/config";
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
 // plan.json without what depends on the clock: timings and every "...seconds..." figure.
 nlohmann::json withoutClock(nlohmann::json j) {
   if (j.is_object()) {
@@ -82,9 +77,9 @@ TEST(StageRecords, AStageByStagePlanThroughRecordsWritesWhatPlanPartWrites) {
   const std::string a = test::tempDir() + "/whole", b = test::tempDir() + "/staged";
   const WrittenPlan wa = writePlanFolder(a, original, whole, folder);
   const WrittenPlan wb = writePlanFolder(b, part, staged, folder);
-  EXPECT_EQ(slurp(fs::path(a) / "toolpaths.csv"), slurp(fs::path(b) / "toolpaths.csv"));
-  EXPECT_EQ(slurp(fs::path(a) / "tools.json"), slurp(fs::path(b) / "tools.json"));
-  EXPECT_EQ(slurp(fs::path(a) / "mesh.stl"), slurp(fs::path(b) / "mesh.stl"));
+  EXPECT_EQ(test::slurp(fs::path(a) / "toolpaths.csv"), test::slurp(fs::path(b) / "toolpaths.csv"));
+  EXPECT_EQ(test::slurp(fs::path(a) / "tools.json"), test::slurp(fs::path(b) / "tools.json"));
+  EXPECT_EQ(test::slurp(fs::path(a) / "mesh.stl"), test::slurp(fs::path(b) / "mesh.stl"));
   EXPECT_EQ(withoutClock(wa.plan).dump(1), withoutClock(wb.plan).dump(1));
   // What the records carry beyond plan.json: the stock roughing leaves (finishing keeps clear of it).
   ASSERT_EQ(staged.roughing.stock_left.size(), whole.roughing.stock_left.size());

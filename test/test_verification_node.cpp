@@ -25,17 +25,6 @@ constexpr double kDip = 0.05;         // mm into the block's top
 // The part: a 40 x 20 x 10 block at the origin (mm), as in test_simulation.cpp.
 const Mesh kBlock = test::box(Vec3(0, 0, 0), Vec3(40, 20, 10));
 
-Tool flatMill() {
-  Tool t;
-  t.id = "flat6";
-  t.type = ToolType::Flat;
-  t.diameter = 6;
-  t.flute_length = 25;
-  t.shank_diameter = 6;
-  t.stickout = 40;
-  t.holder = {{30, 40}};
-  return t;
-}
 
 CutterLocation at(MoveKind move, const Vec3& tip, const std::string& tool = "flat6") {
   CutterLocation c;
@@ -57,7 +46,7 @@ Toolpath pass(const Vec3& from, const Vec3& to, const std::string& tool = "flat6
 std::string planFolder(const Toolpath& path, const std::string& part_name = "mesh.stl") {
   const std::string dir = test::tempDir();
   writeToolpathsCsv(path, dir + "/toolpaths.csv");
-  writeToolsJson({flatMill()}, dir + "/tools.json");
+  writeToolsJson({test::flat6()}, dir + "/tools.json");
   writeBinaryStl(kBlock, dir + "/" + part_name);
   return dir;
 }
