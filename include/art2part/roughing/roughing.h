@@ -54,6 +54,10 @@ struct RoughingOptions {
     // mm between a rest pass's levels (its tool's own step-down when that is less): re-roughing at fine levels takes
     // the stairs that big steps leave on faces at a slant to the direction, and cuts little elsewhere.
     double stepdown = 2.0;
+    // mm^2: a piece of a rest pass's centre region whose sweep takes less than this of the stock it is to remove (the
+    // previous operation's leftovers beyond the allowance) is left out: the tool would cut air round stock it cannot
+    // reach. 0 keeps every piece.
+    double least_target_mm2 = 1.0;
   };
   // 5-axis voxel roughing after each setup's 3-axis operations (voxel_roughing.h).
   struct FiveAxis {

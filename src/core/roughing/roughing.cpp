@@ -28,6 +28,15 @@ constexpr double kCentreSliverMm2 = 0.001;     // centre regions smaller than th
 constexpr double kAirGapMm = 0.1;              // centres farther than radius + this from the stock cut air
 constexpr double kClearedInsetMm = 0.05;       // the cleared area: centres grown by the radius less this
 
+// The pieces of a centre region whose sweep (each grown by `reach`) takes at least `least_mm2` of `target`.
+Region piecesReaching(const Region& centre, const Region& target, double reach, double least_mm2) {
+  Region kept;
+  for (const RegionPiece& piece : regionPieces(centre))
+    if (regionArea(intersect(offsetRegion(piece.rings, reach), target)) >= least_mm2)
+      kept.insert(kept.end(), piece.rings.begin(), piece.rings.end());
+  return kept;
+}
+
 double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -238,6 +247,8 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
       ++op.direct_levels;
       clear.centre = dropSlivers(subtract(clear.centre, offsetRegion(shadows.at(z), r + allowance)), kCentreSliverMm2);
     }
+    if (before && options.rest.least_target_mm2 > 0)  // only where its sweep meets stock it is to remove
+      clear.centre = piecesReaching(clear.centre, target, r - kClearedInsetMm, options.rest.least_target_mm2);
     clear.air = subtract(clear.centre, offsetRegion(stock, r + kAirGapMm));
     ClearingStats stats;
     const std::vector<ClearingPoint> moves = clearLevel(clear, clearing, &stats);
