@@ -44,7 +44,8 @@ bool carriesVisibility(const PlanSetupsRequest& request);
 // (directions and special only). Throws InputError for bits without directions, bits of the wrong size, a direction
 // that is not a unit vector, special flags of the wrong size.
 VisibilityResult visibilityFromRequest(const Part& part, const PlanSetupsRequest& request);
-// The same from the three fields of any message that carries an analyse_visibility result.
+// The same from the three fields of any message that carries an analyse_visibility result (visibilityFromBits, the
+// core's decoding of the contract's layout).
 VisibilityResult visibilityFromMessage(const Part& part, const std::vector<geometry_msgs::Vector3>& directions,
                                        const std::vector<uint8_t>& bits, const std::vector<uint8_t>& special);
 
