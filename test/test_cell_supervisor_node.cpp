@@ -83,12 +83,17 @@ class Tracker {
     return false;
   }
 
+  // The client's state and result are read before our lock is taken: actionlib holds its own lock while it calls the
+  // feedback callback (which takes ours), so taking them in the other order deadlocks when a goal's feedback and
+  // result come together (a refused goal: "queued", then its result).
   GoalRun finish(double timeout) {
     client_.waitForResult(ros::Duration(timeout));
+    const State state = client_.getState();
+    const auto result = client_.getResult();
     std::lock_guard<std::mutex> lock(shared_->mutex);
     GoalRun run = shared_->run;
-    run.state = client_.getState();
-    if (client_.getResult()) run.result = *client_.getResult();
+    run.state = state;
+    if (result) run.result = *result;
     run.seconds = elapsed();
     return run;
   }
