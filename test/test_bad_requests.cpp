@@ -96,14 +96,7 @@ auto run(Client<Action>& client, const Goal& goal, double timeout = 60) {
   } while (0)
 
 Tool flatMill() {
-  Tool t;
-  t.id = "flat6";
-  t.type = ToolType::Flat;
-  t.diameter = 6;
-  t.flute_length = 25;
-  t.shank_diameter = 6;
-  t.stickout = 40;
-  t.holder = {{30, 40}};
+  Tool t = test::flat6();
   t.feed_mm_min = 600;
   t.plunge_mm_min = 200;
   return t;

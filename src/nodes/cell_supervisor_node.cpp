@@ -2,10 +2,11 @@
 //   action:   plan_part (PlanPart): goals queue (at most ~max_queue waiting; more are rejected with the reason); the
 //             running goal has part_server load the part, then runs the pipeline through the stage nodes
 //             (stage_chain.h: analyse_visibility, plan_setups, plan_roughing, plan_finishing, verify_toolpaths, each
-//             taking the previous stage's result; planPart's plan), then writes the plan folder (writePlanFolder: plan.json, toolpaths.csv, tools.json, mesh.stl, pictures,
-//             program.ngc for the machine) under ~output_root. Feedback at every stage report and at least once a
-//             second (a heartbeat repeats the last one); a cancel ends the goal PREEMPTED within a second; a stage
-//             running longer than its timeout (~stage_timeouts) ends it ABORTED naming the stage.
+//             taking the previous stage's result; planPart's plan), then writes the plan folder (writePlanFolder:
+//             plan.json, toolpaths.csv, tools.json, mesh.stl, pictures, program.ngc for the machine) under
+//             ~output_root. Feedback at every stage report and at least once a second (a heartbeat repeats the
+//             last one); a cancel ends the goal PREEMPTED within a second; a stage running longer than its timeout
+//             (~stage_timeouts) ends it ABORTED naming the stage.
 //   services: list_plans (ListPlans), get_plan (GetPlan): the plan folders under ~output_root.
 //   params:   /art2part/part_folders and /art2part/output_root (launch/folders.launch: part_file must lie in the
 //             first, plans are written under the second), ~tools, ~machines_dir, ~machine_3axis, ~machine_5axis,
@@ -55,7 +56,7 @@ constexpr double kFeedbackPeriod = 0.25;  // s: stage reports closer than this a
 constexpr double kHeartbeat = 0.5;        // s: the last feedback is repeated when none went out for this long
 constexpr double kWatch = 0.1;            // s: how often the watch looks at the running goal
 constexpr double kCancelGrace = 0.8;      // s: a cancelled stage that has not stopped by then is left to finish alone
-constexpr double kServerWait = 20;        // s: how long a stage's node may take to be offered (a respawned one starting)
+constexpr double kServerWait = 20;        // s a stage's node may take to be offered (a respawned one starting)
 
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
@@ -366,7 +367,7 @@ class CellSupervisorNode {
   ros::ServiceServer list_srv_, get_srv_;
   ros::WallTimer heartbeat_;
   PartClient parts_;  // only the worker uses it
-  StageChain chain_;  // only the worker uses it
+  StageChain chain_{StageChainOptions{kServerWait}};  // only the worker uses it
 
   std::mutex mutex_;  // guards everything below
   std::condition_variable wake_;

@@ -14,7 +14,8 @@
 //             /art2part/output_root (cell_folders.h): output_dir must lie under it (relative: under it)
 //   topics:   /diagnostics (node_diagnostics.h)
 // A bad goal (unknown part, bad mode, level or length, an output_dir outside the output root or unwritable) is
-// aborted with a one-line reason in result.message; the node stays up. A cancel stops the plan at the next stage or group of faces; it ends preempted.
+// aborted with a one-line reason in result.message; the node stays up. A cancel stops the plan at the next stage or
+// group of faces; it ends preempted. A new goal waits for the running one (stage_goals.h).
 #include "node_main.h"
 #include "setup_markers.h"  // visibilityFromMessage
 

@@ -1,8 +1,8 @@
 // roughing_planner: global roughing of a part loaded in part_server (thesis 4.1, 5.1-5.2); with the same options the
 // same plan as `art2part plan`'s roughing stage (planRoughing one setup at a time).
 //   action:   plan_roughing (PlanRoughing): visibility and setups here (or the goal's setups_record, plan_setups'
-//             hand-off; with plug_holes the holes a drill makes stay solid, as `art2part plan` roughs), then one setup at a time: the main flat or bull
-//             mill (chosen per setup, or the goal's), then optionally the rest tool; feedback between stages and
+//             hand-off; with plug_holes the holes a drill makes stay solid, as `art2part plan` roughs), then one
+//             setup at a time: the main flat or bull mill (chosen per setup, or the goal's), then optionally the rest tool; feedback between stages and
 //             setups (setup k of n, the last operation, levels done); the result holds per operation a
 //             MachiningOperation and the whole toolpath (tips in metres, moves); toolpaths.csv and tools.json are
 //             written to the goal's output_dir when it names one
@@ -13,8 +13,8 @@
 //             /art2part/output_root (cell_folders.h): output_dir must lie under it (relative: under it)
 //   topics:   /diagnostics (node_diagnostics.h)
 // A bad goal (unknown part or tool, a tool that cannot rough, a bad mode or number, an output_dir outside the output
-// root or unwritable) is aborted with a one-line reason in result.message; the node stays up. A cancel stops the running one
-// within a level; it ends preempted. A new goal waits for the running one (stage_goals.h).
+// root or unwritable) is aborted with a one-line reason in result.message; the node stays up. A cancel stops the
+// running one within a level; it ends preempted. A new goal waits for the running one (stage_goals.h).
 #include "roughing_markers.h"  // first: the message MachiningOperation beside the core's RoughingOperation
 #include "node_main.h"
 

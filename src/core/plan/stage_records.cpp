@@ -92,6 +92,10 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(RoughingPlan, operations, stock_left, seconds
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(RoughingStage, holes, hole_methods, roughing, seconds_holes)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(FinishingOperation, setup, kind, tool, direction, faces, path, feed_mm, rapid_mm,
                                    seconds, plan_seconds, note)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ToolpathAndTools, path, tools)
+// Verify options: all but stock_mesh (the caller's) and threads (the machine's own).
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(VerifyOptions, resolution, tolerance, stock_margin, step_fraction, cusp_step,
+                                   max_listed, tool_chord_mm, face_allowance)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(FinishingPlan, operations, faces, holes, hole_methods, tool_changes_per_setup,
                                    tool_changes, seconds, plan_seconds, cancelled)
 
@@ -180,44 +184,12 @@ RecordBytes finishingRecord(const FinishingPlan& plan) { return pack("finishing"
 FinishingPlan finishingFromRecord(const RecordBytes& bytes) { return read<FinishingPlan>("finishing", bytes); }
 
 RecordBytes toolpathRecord(const Toolpath& path, const std::vector<Tool>& tools) {
-  return pack("toolpath", json{{"path", path}, {"tools", tools}});
+  return pack("toolpath", ToolpathAndTools{path, tools});
 }
-ToolpathAndTools toolpathFromRecord(const RecordBytes& bytes) {
-  const json data = unpack("toolpath", bytes);
-  try {
-    return {data.at("path").get<Toolpath>(), data.at("tools").get<std::vector<Tool>>()};
-  } catch (const json::exception& e) {
-    throw InputError(std::string("a toolpath record that does not hold one: ") + e.what());
-  }
-}
+ToolpathAndTools toolpathFromRecord(const RecordBytes& bytes) { return read<ToolpathAndTools>("toolpath", bytes); }
 
-RecordBytes verifyOptionsRecord(const VerifyOptions& o) {
-  return pack("verify options", json{{"resolution", o.resolution},
-                                     {"tolerance", o.tolerance},
-                                     {"stock_margin", o.stock_margin},
-                                     {"step_fraction", o.step_fraction},
-                                     {"cusp_step", o.cusp_step},
-                                     {"max_listed", o.max_listed},
-                                     {"tool_chord_mm", o.tool_chord_mm},
-                                     {"face_allowance", o.face_allowance}});
-}
-VerifyOptions verifyOptionsFromRecord(const RecordBytes& bytes) {
-  const json data = unpack("verify options", bytes);
-  VerifyOptions o;
-  try {
-    o.resolution = data.at("resolution").get<double>();
-    o.tolerance = data.at("tolerance").get<double>();
-    o.stock_margin = data.at("stock_margin").get<double>();
-    o.step_fraction = data.at("step_fraction").get<double>();
-    o.cusp_step = data.at("cusp_step").get<bool>();
-    o.max_listed = data.at("max_listed").get<int>();
-    o.tool_chord_mm = data.at("tool_chord_mm").get<double>();
-    o.face_allowance = data.at("face_allowance").get<std::vector<double>>();
-  } catch (const json::exception& e) {
-    throw InputError(std::string("a verify options record that does not hold one: ") + e.what());
-  }
-  return o;
-}
+RecordBytes verifyOptionsRecord(const VerifyOptions& options) { return pack("verify options", options); }
+VerifyOptions verifyOptionsFromRecord(const RecordBytes& bytes) { return read<VerifyOptions>("verify options", bytes); }
 
 RecordBytes verificationRecord(const VerificationReport& report) { return pack("verification", report); }
 VerificationReport verificationFromRecord(const RecordBytes& bytes) {
