@@ -1,5 +1,6 @@
 // Clearing one slab: coverage, containment, entries, links and heights of clearLevel's moves.
 #include "art2part/roughing/clearing_paths.h"
+#include "art2part/roughing/link_clearance.h"
 
 #include <gtest/gtest.h>
 
@@ -92,7 +93,18 @@ int upwardRetracts(const std::vector<ClearingPoint>& moves, double clearance_z) 
   return n;
 }
 
-// The properties every result must have: rapids only at the clearance plane or straight down to the safe height;
+// A sideways rapid below the clearance plane with stay-down links: over this level's centre at the safe height or
+// above, or over a cleared level's centre at its z + safe height or above.
+bool provenClear(const ClearingLevel& level, const ClearingOptions& options, const Point2& a, const Point2& b,
+                 double height) {
+  if (height >= level.top + options.safe_height - 1e-12 && segmentInside(level.centre, a, b)) return true;
+  for (const ClearedLevel& cleared : level.cleared)
+    if (height >= cleared.z + options.safe_height - 1e-12 && segmentInside(cleared.centre, a, b)) return true;
+  return false;
+}
+
+// The properties every result must have: rapids only at the clearance plane or straight down to the safe height
+// (with stay-down links, also sideways where provenClear says, and no retract at the end);
 // cutting points in `centre` at heights in [z, top + safe]; cutting segments inside `centre` (within 1 um: the
 // region's own segment test rounds midpoints of boundary edges to its grid); nothing steeper than the ramp angle but
 // plunges, which go straight down, in `air` unless counted; no repeated points; stats consistent with the moves.
@@ -102,9 +114,15 @@ void expectSound(const ClearingLevel& level, const ClearingOptions& options, con
   const double safe = level.top + options.safe_height, slope = std::tan(options.ramp_angle_deg * kPi / 180);
   const Region near_centre = offsetRegion(level.centre, 0.001);
   EXPECT_EQ(moves.front().move, ClearingMove::Rapid);
-  EXPECT_EQ(moves.front().tip.z(), options.clearance_z);
-  EXPECT_EQ(moves.back().move, ClearingMove::Rapid);
-  EXPECT_EQ(moves.back().tip.z(), options.clearance_z);
+  if (!level.from) {
+    EXPECT_EQ(moves.front().tip.z(), options.clearance_z);
+  }
+  if (!options.stay_down) {
+    EXPECT_EQ(moves.back().move, ClearingMove::Rapid);
+    EXPECT_EQ(moves.back().tip.z(), options.clearance_z);
+  } else {
+    EXPECT_NE(moves.back().move, ClearingMove::Rapid);
+  }
   int plunges_into_stock = 0, bad_points = 0, bad_segments = 0, steep = 0;
   for (std::size_t i = 1; i < moves.size(); ++i) {
     const ClearingPoint &m = moves[i], &prev = moves[i - 1];
@@ -114,8 +132,11 @@ void expectSound(const ClearingLevel& level, const ClearingOptions& options, con
       case ClearingMove::Rapid:
         EXPECT_GE(m.tip.z(), safe - 1e-12) << "rapid below the safe height at move " << i;
         if (run > 0) {
-          EXPECT_EQ(m.tip.z(), options.clearance_z) << "sideways rapid off the clearance plane at move " << i;
-          EXPECT_EQ(prev.tip.z(), options.clearance_z) << "sideways rapid off the clearance plane at move " << i;
+          EXPECT_EQ(m.tip.z(), prev.tip.z()) << "slanted rapid at move " << i;
+          if (m.tip.z() != options.clearance_z) {
+            EXPECT_TRUE(options.stay_down && provenClear(level, options, xy(prev), xy(m), m.tip.z()))
+                << "sideways rapid off the clearance plane and not proven clear at move " << i;
+          }
         }
         continue;
       case ClearingMove::Plunge:
@@ -137,9 +158,11 @@ void expectSound(const ClearingLevel& level, const ClearingOptions& options, con
   EXPECT_EQ(bad_segments, 0) << "cutting segments leaving the region";
   EXPECT_EQ(steep, 0) << "cutting moves steeper than the ramp angle";
   EXPECT_EQ(plunges_into_stock, stats.plunges_into_stock);
-  EXPECT_EQ(upwardRetracts(moves, options.clearance_z), stats.retracts);
+  const bool retract_from = options.stay_down && level.from && level.from->z() < options.clearance_z &&
+                            moves.front().tip.z() == options.clearance_z;  // straight up from the level before
+  EXPECT_EQ(upwardRetracts(moves, options.clearance_z) + (retract_from ? 1 : 0), stats.retracts);
   // Every descent into the slab ends at the level before any cut: the last cutting point is at the level.
-  EXPECT_EQ(moves[moves.size() - 2].tip.z(), level.z);
+  EXPECT_EQ(moves[moves.size() - (options.stay_down ? 1 : 2)].tip.z(), level.z);
 }
 
 std::vector<ClearingPoint> clearChecked(const ClearingLevel& level, const ClearingOptions& options,
@@ -398,10 +421,106 @@ TEST(ClearingPaths, RandomRegionsAreSound) {
     ClearingLevel level = levelOf(centre, intersect(centre, region({circle({30, 20}, 15 * unit(random))})));
     ClearingOptions options = optionsOf(0.5 + 4 * unit(random), 180 * unit(random), unit(random) < 0.7);
     options.ramp_angle_deg = 1 + 10 * unit(random);
+    if (unit(random) < 0.5) {  // stay-down links, over a cleared level above that covered part of the region
+      options.stay_down = true;
+      const Region disc = region({circle({30, 20}, 40 * unit(random))});
+      level.cleared.push_back({level.top + 2, intersect(offsetRegion(centre, 2), disc)});
+      if (unit(random) < 0.5) level.from = Eigen::Vector3d(60 * unit(random), 40 * unit(random), level.top);
+    }
     ClearingStats stats;
     const std::vector<ClearingPoint> moves = clearChecked(level, options, stats);
     if (options.contour_pass) {
       EXPECT_LE(worstCoverage(centre, moves, level.z, 1.0), options.stepover / 2 + 0.06);
     }
   }
+}
+
+// Stay-down links (issue 19): round an island that the level above did not have, the tool hops over the island at
+// that level's height instead of retracting; between passes it feeds along the level or hops; the level ends where
+// its last cut ends. Less time than the clearance-plane links at the same rates, and the same coverage.
+TEST(ClearingPaths, StayDownLinksHopOverClearedMaterialInsteadOfRetracting) {
+  const Region island = region({rectangle(20, 10, 40, 30)});
+  ClearingLevel level = levelOf(subtract(region({rectangle(0, 0, 60, 40)}), island));
+  level.cleared.push_back({level.top, region({rectangle(-5, -5, 65, 45)})});
+  level.from = Eigen::Vector3d(50, 20, level.top);
+  auto seconds = [](const std::vector<ClearingPoint>& moves, const ClearingOptions& options) {
+    return 60 * (clearingLength(moves, true) / options.feed_mm_min + clearingLength(moves, false) / options.rapid_mm_min);
+  };
+  ClearingOptions clearance = optionsOf(), stay = optionsOf();
+  stay.stay_down = true;
+  ClearingStats over_clearance, stayed;
+  const std::vector<ClearingPoint> retracting = clearChecked(level, clearance, over_clearance);
+  const std::vector<ClearingPoint> moves = clearChecked(level, stay, stayed);
+  EXPECT_EQ(stayed.retracts, 0);
+  EXPECT_GE(stayed.hops + stayed.level_links, 1);
+  EXPECT_GE(over_clearance.retracts, 2);
+  EXPECT_LE(worstCoverage(level.centre, moves, level.z), 2 + 1e-6);
+  EXPECT_DOUBLE_EQ(moves.front().tip.x(), 50);  // from where the level before left the tool, straight up
+  EXPECT_DOUBLE_EQ(moves.front().tip.y(), 20);
+  EXPECT_LT(seconds(moves, stay), seconds(retracting, clearance));
+  EXPECT_LT(clearingLength(moves, false), 0.5 * clearingLength(retracting, false));
+}
+
+namespace {
+
+// Brute force: the tool at `height` over points of a-b every 0.05 mm, its radius every 0.5 mm of height up to its
+// holder's top (the spindle side above it as wide as the holder), against each slab's stock grown by that radius.
+bool clearByProbing(const Tool& tool, const std::vector<SlabState>& slabs, const Point2& a, const Point2& b,
+                    double height, double margin) {
+  const int samples = 1 + static_cast<int>((b - a).norm() / 0.05);
+  for (const SlabState& slab : slabs)
+    for (double h = std::max(0.0, slab.z - height); h <= slab.top - height; h += 0.5) {
+      const double radius = h > toolLength(tool) ? holderTopRadius(tool) : toolRadiusAt(tool, h);
+      if (radius <= 0) continue;
+      const Region grown = offsetRegion(slab.remaining, radius + margin);
+      for (int i = 0; i <= samples; ++i)
+        if (regionContains(grown, a + (b - a) * (static_cast<double>(i) / samples))) return false;
+    }
+  return true;
+}
+
+}  // namespace
+
+// LinkClearance against probing: the height it gives is clear by probing (with 0.05 mm less margin, for the probe's
+// spacing); where probing finds the lowest height clear with 0.3 mm more margin, it gives that height.
+TEST(LinkClearance, HeightsAreClearByProbingAndNotNeedlesslyHigh) {
+  Tool tool;
+  tool.id = "flat10";
+  tool.diameter = 10;
+  tool.flute_length = 22;
+  tool.shank_diameter = 10;
+  tool.stickout = 38;
+  tool.holder = {{40, 64}};  // one step: bodyZones merges none, so probing sees the same body
+  const double margin = 0.5, ceiling = 60;
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> unit(0, 1);
+  int raised = 0, lowest_kept = 0;
+  for (int trial = 0; trial < 30; ++trial) {
+    SCOPED_TRACE(trial);
+    // Slabs 4 mm thick from z = 0 up to 20: a few blocks of stock each, fewer higher up.
+    std::vector<SlabState> slabs;
+    LinkClearance clearance(tool, margin);
+    for (double top = 20; top > 0; top -= 4) {
+      std::vector<Ring> blocks;
+      for (int i = 0; i < 1 + static_cast<int>(4 * unit(random) * (20 - top) / 20); ++i) {
+        const Point2 c(200 * unit(random), 200 * unit(random));
+        blocks.push_back(rectangle(c.x(), c.y(), c.x() + 5 + 20 * unit(random), c.y() + 5 + 20 * unit(random)));
+      }
+      slabs.push_back({top - 4, top, region(blocks)});
+      clearance.addSlab(slabs.back());
+    }
+    const Point2 a(200 * unit(random), 200 * unit(random)), b(200 * unit(random), 200 * unit(random));
+    const double lowest = 1;  // under every slab's top: only a way round the stock's sides is clear there
+    const double height = clearance.lowestClear(a, b, lowest, ceiling);
+    if (height < ceiling) {
+      EXPECT_TRUE(clearByProbing(tool, slabs, a, b, height, margin - 0.05)) << "height " << height;
+    }
+    if (clearByProbing(tool, slabs, a, b, lowest, margin + 0.3)) {
+      EXPECT_EQ(height, lowest);
+      ++lowest_kept;
+    }
+    if (height > lowest && height < ceiling) ++raised;
+  }
+  EXPECT_GE(raised, 3);       // the random cases include hops over stock
+  EXPECT_GE(lowest_kept, 3);  // and ways clear at the lowest height
 }

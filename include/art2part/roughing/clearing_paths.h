@@ -4,6 +4,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
+#include <optional>
 #include <vector>
 
 #include "art2part/roughing/region.h"
@@ -22,11 +24,28 @@ struct ClearingPoint {
   ClearingMove move = ClearingMove::Feed;
 };
 
+// A level of the same operation, cleared before this one: once its moves are done the tool may stand at any height
+// from `z` up over any point of `centre` without meeting stock or part. Why: the column over every point of a centre
+// region is clear above the slab's top (roughing.h), and with the contour pass the moves sweep every point within the
+// tool radius of `centre` down to `z` (a point within r of p in centre is within stepover/2 < r of a feed, or within r
+// of the ring that the segment from p to it crosses, which the contour follows).
+struct ClearedLevel {
+  double z = 0;
+  Region centre;
+};
+
 struct ClearingLevel {
   double z = 0;          // the level: tool tip height of every cutting move
   double top = 0;        // the top of the slab: above it, every point of `centre` has been cleared already
   Region centre;         // where the tool centre may go at this level and everything in it is to be cleared
   Region air;            // where the tool centre may plunge straight down (its disc meets no stock in the slab)
+  // Stay-down links only (ClearingOptions::stay_down):
+  std::optional<Eigen::Vector3d> from;  // where the tool is (the last point of the level before); none: the
+                                        // clearance plane. Its column must be clear from its height up.
+  std::vector<ClearedLevel> cleared;    // levels above this one already cleared, nearest first
+  // The lowest height in [lowest, ceiling) at which a model of the stock proves the straight way from a to b clear
+  // for the whole tool, else `ceiling` (LinkClearance); empty: the regions above only.
+  std::function<double(const Point2& a, const Point2& b, double lowest, double ceiling)> clear_height;
 };
 
 struct ClearingOptions {
@@ -37,6 +56,16 @@ struct ClearingOptions {
   double clearance_z = 0;       // the clearance plane (above all stock): links that leave `centre` retract to it
   double min_segment = 0.05;    // mm: zig-zag intervals shorter than this are dropped
   bool contour_pass = true;     // a pass along every ring of `centre` after the zig-zag
+  // Links between passes, pieces and levels. false: every pass is reached over the clearance plane (contours by a
+  // feed where the straight way lies in `centre`). true: by whichever of these takes less time at the rates below,
+  // a feed at the level along a straight segment in `centre` (a full-width cut at most, which the library's
+  // step-downs allow), or a hop at the lowest height proven clear over the whole segment (top + safe_height over
+  // `centre`, z + safe_height over a cleared level's centre: ClearedLevel), then the entry; the clearance plane only
+  // where neither holds. The level ends where its last cut ends (no retract): the caller links the next level from
+  // there and retracts at the end.
+  bool stay_down = false;
+  double feed_mm_min = 1000;    // the tool's feed: the cost of a link along the level, and of a ramp
+  double rapid_mm_min = 10000;  // the machine's rapid rate: the cost of a hop
 };
 
 // The moves that clear `level.centre`. Each connected piece of it gets zig-zag lines along the direction,
@@ -53,9 +82,13 @@ struct ClearingOptions {
 // joined by a feed where the straight way lies in `centre`, else entered by a ramp round the ring itself, the lap
 // then running from where the ramp reached z back to there. With the contour pass every point of `centre` lies within
 // stepover/2 (+ min_segment) of a feed at z.
-// The first point is a rapid at the clearance plane; the last is a retract to it; sideways rapids are at the
-// clearance plane only. Every Feed/Ramp/Plunge point lies in `centre` (x, y) at a height in [z, top + safe_height];
-// every cutting segment lies in `centre` (to within the region grid); nothing descends more steeply than the ramp
+// Pieces are taken nearest first, a piece's passes nearest first from either end (an end in air first if only one
+// is), each reached as `stay_down` says. Without stay_down the first point is a rapid at the clearance plane, the
+// last a retract to it and sideways rapids are at the clearance plane only; with it, sideways rapids also run at the
+// heights that ClearedLevel and `top` prove clear, over the regions that prove it. A piece no point of which lies
+// farther than stepover/2 from its rings (a narrow band, as rest passes leave) gets no zig-zag when there is a
+// contour pass: the contour covers it. Every Feed/Ramp/Plunge point lies in `centre` (x, y) at a height in
+// [z, top + safe_height]; every cutting segment lies in `centre` (to within the region grid); nothing descends more steeply than the ramp
 // angle but plunges. `stats`, if given, is added to.
 struct ClearingStats {
   int passes = 0, contours = 0;    // zig-zag passes and contour passes
@@ -63,6 +96,8 @@ struct ClearingStats {
   int plunges_in_air = 0;          // straight down where the tool meets no stock
   int plunges_into_stock = 0;      // straight down into stock: only for a pass too short to ramp along
   int retracts = 0;                // rapids up to the clearance plane, the last one included
+  int level_links = 0;             // stay-down: links fed along the level
+  int hops = 0;                    // stay-down: links over cleared material below the clearance plane
 };
 std::vector<ClearingPoint> clearLevel(const ClearingLevel& level, const ClearingOptions& options,
                                       ClearingStats* stats = nullptr);

@@ -46,6 +46,9 @@ struct RoughingOptions {
     double ramp_angle_deg = 3.0;  // entries into stock
     double clearance = 5.0;       // mm above the stock's top: the retract plane of each setup
     double holder_margin = 0.5;   // mm kept between shank or holder and material
+    // Links between passes, pieces and levels inside cleared material or over stock the slabs prove clear
+    // (clearing_paths.h, link_clearance.h); false: every link over the clearance plane.
+    bool stay_down = true;
   };
   // Smaller tools over what the first left.
   struct Rest {

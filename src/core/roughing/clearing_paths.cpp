@@ -273,7 +273,7 @@ class PieceScan {
   std::vector<std::vector<std::size_t>> strips_;  // per pair of consecutive heights: the edges reaching into it
 };
 
-// Moves at one level, with the entries and retracts between cuts.
+// Moves at one level, with the entries, links and retracts between cuts.
 class PathWriter {
  public:
   PathWriter(const ClearingLevel& level, const ClearingOptions& options, ClearingStats& stats)
@@ -281,32 +281,68 @@ class PathWriter {
         options_(options),
         stats_(stats),
         safe_z_(std::max(level.top + options.safe_height, level.z)),
-        slope_(std::tan(std::clamp(options.ramp_angle_deg, 0.01, 89.0) * kPi / 180)) {}
+        slope_(std::tan(std::clamp(options.ramp_angle_deg, 0.01, 89.0) * kPi / 180)),
+        feed_(std::max(options.feed_mm_min, 1.0)),
+        rapid_(std::max(options.rapid_mm_min, 1.0)) {
+    if (options.stay_down && level.from) tool_ = *level.from;
+  }
 
-  bool empty() const { return moves_.empty(); }
-  Point2 at() const { return moves_.back().tip.head<2>(); }
-  bool atLevel() const { return !moves_.empty() && moves_.back().tip.z() == level_.z; }
+  // The tool has a position: it has moved at this level, or came from the level before.
+  bool placed() const { return !moves_.empty() || tool_.has_value(); }
+  Point2 at() const { return position().head<2>(); }
+  bool atLevel() const { return placed() && position().z() == level_.z; }
 
   void add(const Point2& p, double z, ClearingMove move) {
     const Eigen::Vector3d tip(p.x(), p.y(), z);
-    if (!moves_.empty() && (moves_.back().tip - tip).norm() < 1e-9) return;
-    if (move == ClearingMove::Rapid && z == options_.clearance_z && !moves_.empty() &&
-        moves_.back().tip.z() < options_.clearance_z)
+    if (placed() && (position() - tip).norm() < 1e-9) return;
+    if (move == ClearingMove::Rapid && z == options_.clearance_z && placed() && position().z() < options_.clearance_z)
       ++stats_.retracts;
     moves_.push_back({tip, move});
   }
   void feed(const Point2& p) { add(p, level_.z, ClearingMove::Feed); }
 
   void retract() {
-    if (!moves_.empty() && moves_.back().tip.z() < options_.clearance_z)
-      add(at(), options_.clearance_z, ClearingMove::Rapid);
+    if (placed() && position().z() < options_.clearance_z) add(at(), options_.clearance_z, ClearingMove::Rapid);
   }
 
-  // Retract, over to above `start` at the clearance plane, straight down to the safe height above the slab.
-  void moveAbove(const Point2& start) {
-    retract();
-    add(start, options_.clearance_z, ClearingMove::Rapid);
-    add(start, safe_z_, ClearingMove::Rapid);
+  // To `start`, ready to cut there. True: the tool is at the level at `start` (fed along the level, only where
+  // `may_feed`); false: it stands at the safe height above `start` and must enter. `entry_s` is what the entry
+  // would take (minutes are compared, not judged: any choice here is sound).
+  bool linkTo(const Point2& start, bool may_feed, double entry_s) {
+    if (!placed()) {
+      add(start, options_.clearance_z, ClearingMove::Rapid);
+      add(start, safe_z_, ClearingMove::Rapid);
+      return false;
+    }
+    const Point2 from = at();
+    const bool inside = (may_feed || options_.stay_down) && segmentInside(level_.centre, from, start);
+    if (!options_.stay_down) {
+      if (may_feed && inside && atLevel()) {
+        feed(start);
+        return true;
+      }
+      moveAbove(start, options_.clearance_z);
+      return false;
+    }
+    const double run = (start - from).norm(), z = position().z();
+    const double hop = std::max(hopHeight(from, start, inside), z);
+    const double hop_s = 60 * ((hop - z) + run + (hop - safe_z_)) / rapid_ + entry_s;
+    if (may_feed && inside && atLevel() && 60 * run / feed_ <= hop_s) {
+      feed(start);
+      ++stats_.level_links;
+      return true;
+    }
+    if (hop < options_.clearance_z) ++stats_.hops;
+    moveAbove(start, hop);
+    return false;
+  }
+
+  // Seconds to reach the level from the safe height at `start`: a plunge in air, else a ramp forth and back.
+  double entrySeconds(const Point2& start) const {
+    const double drop = safe_z_ - level_.z;
+    if (drop <= 0) return 0;
+    if (regionContains(level_.air, start)) return 60 * drop / feed_;
+    return 60 * 2 * (drop / slope_) / feed_;
   }
 
   // Down to the level at the start of an open pass: a plunge in air, else a ramp forth and back along the pass's
@@ -335,6 +371,30 @@ class PathWriter {
   std::vector<ClearingPoint> take() { return std::move(moves_); }
 
  private:
+  Eigen::Vector3d position() const { return moves_.empty() ? *tool_ : moves_.back().tip; }
+
+  // Up to `height`, over to above `start`, straight down to the safe height above the slab.
+  void moveAbove(const Point2& start, double height) {
+    add(at(), height, ClearingMove::Rapid);
+    add(start, height, ClearingMove::Rapid);
+    add(start, safe_z_, ClearingMove::Rapid);
+  }
+
+  // The lowest height at which the straight way from `a` to `b` is proven clear: the safe height over this level's
+  // centre (clear above its top), a cleared level's z + safe height over its centre, what the stock model proves;
+  // else the clearance plane.
+  double hopHeight(const Point2& a, const Point2& b, bool inside_centre) const {
+    if (inside_centre) return safe_z_;
+    double best = options_.clearance_z;
+    for (const ClearedLevel& cleared : level_.cleared) {
+      const double height = std::max(cleared.z + options_.safe_height, safe_z_);
+      if (height >= best) break;
+      if (segmentInside(cleared.centre, a, b)) best = height;
+    }
+    if (best > safe_z_ && level_.clear_height) best = std::min(best, level_.clear_height(a, b, safe_z_, best));
+    return best;
+  }
+
   // At the level without a ramp: nothing to descend through, or a plunge in air.
   bool enteredStraight(const Point2& start) {
     if (safe_z_ <= level_.z) return true;
@@ -418,37 +478,74 @@ class PathWriter {
   const ClearingLevel& level_;
   const ClearingOptions& options_;
   ClearingStats& stats_;
-  double safe_z_, slope_;
+  double safe_z_, slope_, feed_, rapid_;
+  std::optional<Eigen::Vector3d> tool_;  // where the tool was before the level's first move
   std::vector<ClearingPoint> moves_;
 };
 
-// The piece, among those with passes left, whose first pass starts nearest the tool (the first, for the first).
+// The piece, among those with passes left, with a pass end nearest the tool (the first, for the first).
 std::size_t nextPiece(const std::vector<std::vector<Polyline>>& passes, const std::vector<bool>& done,
                       const PathWriter& writer) {
   std::size_t best = passes.size();
   double best_distance = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < passes.size(); ++i) {
-    if (done[i] || passes[i].empty()) continue;
-    const double d = writer.empty() ? 0 : (passes[i].front().front() - writer.at()).squaredNorm();
-    if (d < best_distance) best = i, best_distance = d;
+    if (done[i]) continue;
+    for (const Polyline& pass : passes[i]) {
+      const double d = writer.placed() ? std::min((pass.front() - writer.at()).squaredNorm(),
+                                                  (pass.back() - writer.at()).squaredNorm())
+                                       : 0;
+      if (d < best_distance) best = i, best_distance = d;
+    }
   }
   return best;
+}
+
+// The unused pass with an end nearest the tool, turned to start there; an end in air comes first if only one is.
+Polyline nextPass(std::vector<Polyline>& passes, std::vector<bool>& used, const ClearingLevel& level,
+                  const PathWriter& writer) {
+  std::size_t best = passes.size();
+  double best_distance = std::numeric_limits<double>::infinity();
+  bool best_reversed = false;
+  for (std::size_t k = 0; k < passes.size(); ++k) {
+    if (used[k]) continue;
+    const Polyline& pass = passes[k];
+    const bool front_air = regionContains(level.air, pass.front()), back_air = regionContains(level.air, pass.back());
+    bool reversed = false;
+    double d = 0;
+    if (writer.placed()) {
+      const double to_front = (pass.front() - writer.at()).squaredNorm();
+      const double to_back = (pass.back() - writer.at()).squaredNorm();
+      reversed = to_back < to_front;
+      d = std::min(to_front, to_back);
+    }
+    if (front_air != back_air) reversed = back_air;
+    if (d < best_distance) best = k, best_distance = d, best_reversed = reversed;
+  }
+  used[best] = true;
+  Polyline pass = std::move(passes[best]);
+  if (best_reversed) std::reverse(pass.begin(), pass.end());
+  return pass;
+}
+
+// A piece every point of which lies within half a stepover of its rings: the contour pass alone covers it.
+bool coveredByContour(const RegionPiece& piece, const ClearingOptions& options) {
+  return options.contour_pass && regionEmpty(offsetRegion(piece.rings, -0.5 * std::max(options.stepover, 0.01)));
 }
 
 void cutZigzag(const std::vector<RegionPiece>& pieces, const ClearingLevel& level, const ClearingOptions& options,
                PathWriter& writer, ClearingStats& stats) {
   const ScanFrame frame(options.angle_deg);
   std::vector<std::vector<Polyline>> passes;
-  for (const RegionPiece& piece : pieces) passes.push_back(PieceScan(piece.rings, frame, options).passes());
+  for (const RegionPiece& piece : pieces)
+    passes.push_back(coveredByContour(piece, options) ? std::vector<Polyline>{}
+                                                      : PieceScan(piece.rings, frame, options).passes());
   std::vector<bool> done(passes.size(), false);
   for (std::size_t i = nextPiece(passes, done, writer); i < passes.size(); i = nextPiece(passes, done, writer)) {
     done[i] = true;
-    for (Polyline& pass : passes[i]) {
-      // Entered from whichever end lies in air, if one does: a plunge there costs nothing.
-      if (!regionContains(level.air, pass.front()) && regionContains(level.air, pass.back()))
-        std::reverse(pass.begin(), pass.end());
-      writer.moveAbove(pass.front());
-      writer.enterPass(pass);
+    std::vector<bool> used(passes[i].size(), false);
+    for (std::size_t n = 0; n < passes[i].size(); ++n) {
+      const Polyline pass = nextPass(passes[i], used, level, writer);
+      if (!writer.linkTo(pass.front(), options.stay_down, writer.entrySeconds(pass.front()))) writer.enterPass(pass);
       for (const Point2& p : pass) writer.feed(p);
       ++stats.passes;
     }
@@ -464,8 +561,8 @@ std::pair<std::size_t, double> nearestVertex(const Polyline& ring, const Point2&
 }
 
 // Every ring followed once at the level, nearest first; joined by a feed where the straight way is inside the region.
-void cutContours(const std::vector<RegionPiece>& pieces, const ClearingLevel& level, const ClearingOptions& options,
-                 PathWriter& writer, ClearingStats& stats) {
+void cutContours(const std::vector<RegionPiece>& pieces, const ClearingOptions& options, PathWriter& writer,
+                 ClearingStats& stats) {
   std::vector<Polyline> rings;
   for (const RegionPiece& piece : pieces)
     for (const Ring& ring : regionRings(piece.rings))
@@ -473,7 +570,7 @@ void cutContours(const std::vector<RegionPiece>& pieces, const ClearingLevel& le
   while (!rings.empty()) {
     std::size_t next = 0, start = 0;
     double nearest = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < rings.size() && !writer.empty(); ++i) {
+    for (std::size_t i = 0; i < rings.size() && writer.placed(); ++i) {
       const std::pair<std::size_t, double> vertex = nearestVertex(rings[i], writer.at());
       if (vertex.second < nearest) next = i, start = vertex.first, nearest = vertex.second;
     }
@@ -481,12 +578,7 @@ void cutContours(const std::vector<RegionPiece>& pieces, const ClearingLevel& le
     rings.erase(rings.begin() + next);
     std::rotate(ring.begin(), ring.begin() + start, ring.end());
     std::pair<std::size_t, Point2> lap{ring.size() - 1, ring.front()};
-    if (writer.atLevel() && segmentInside(level.centre, writer.at(), ring.front())) {
-      writer.feed(ring.front());
-    } else {
-      writer.moveAbove(ring.front());
-      lap = writer.enterRing(ring);
-    }
+    if (!writer.linkTo(ring.front(), true, writer.entrySeconds(ring.front()))) lap = writer.enterRing(ring);
     // Once round at the level, from where the tool reached it back to there.
     for (std::size_t k = 1; k <= ring.size(); ++k) writer.feed(ring[(lap.first + k) % ring.size()]);
     writer.feed(lap.second);
@@ -504,8 +596,8 @@ std::vector<ClearingPoint> clearLevel(const ClearingLevel& level, const Clearing
   const std::vector<RegionPiece> pieces = regionPieces(level.centre);
   PathWriter writer(level, options, counts);
   cutZigzag(pieces, level, options, writer, counts);
-  if (options.contour_pass) cutContours(pieces, level, options, writer, counts);
-  writer.retract();
+  if (options.contour_pass) cutContours(pieces, options, writer, counts);
+  if (!options.stay_down) writer.retract();
   return writer.take();
 }
 

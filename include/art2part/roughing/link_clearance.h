@@ -1,0 +1,56 @@
+// Stay-down links over the in-process stock (issue 19, item 2): the lowest height at which the whole tool, flutes,
+// shank and holder, may cross a straight segment in a setup frame, proven from the stock left in the slabs an
+// operation has finished. Why from the stock and not from the centre regions alone: a rest pass's regions are narrow
+// bands round its targets and a link between two of them rarely stays inside any, while the slabs' stock says where
+// the tool may pass over cleared pockets, over the part's own air and outside the block.
+// Sound because a finished slab's `remaining` holds everything left in it (the part's section included) and holds
+// only less as the operation goes on; a segment is clear of a slab when every body zone overlapping the slab's
+// heights keeps its radius plus the margin from every point of `remaining`. Slabs not finished are never crossed:
+// candidates start at the caller's lowest height, at or above the current slab's top.
+#pragma once
+
+#include <vector>
+
+#include "art2part/roughing/region.h"
+#include "art2part/roughing/roughing.h"
+#include "art2part/tooling/tool.h"
+
+namespace art2part {
+
+class LinkClearance {
+ public:
+  // `margin`: mm kept between any part of the tool and the stock (the holder margin of roughing).
+  LinkClearance(const Tool& tool, double margin);
+
+  // A slab the operation has finished (its stock left, part section included). Slabs come top down.
+  void addSlab(const SlabState& slab);
+
+  // The lowest height in [lowest, ceiling) at which the tool tip may go straight from `a` to `b` with every body zone
+  // clear of every finished slab, or `ceiling` when none is proven. Tries `lowest` and the heights where a zone's
+  // bottom clears a slab's top, at most kMostTries of them.
+  double lowestClear(const Point2& a, const Point2& b, double lowest, double ceiling) const;
+
+  static constexpr int kMostTries = 12;
+
+ private:
+  struct Zone {
+    double from = 0, to = 0, radius = 0;  // above the tip, mm
+  };
+  struct Edge {
+    Point2 a, b;
+  };
+  struct Slab {
+    double z = 0, top = 0;
+    Point2 lo, hi;  // box of its remaining stock
+    Region remaining;
+    std::vector<Edge> edges;
+  };
+  bool clearAt(const Point2& a, const Point2& b, double height) const;
+  static bool segmentClearOf(const Slab& slab, const Point2& a, const Point2& b, double radius);
+
+  std::vector<Zone> zones_;
+  std::vector<Slab> slabs_;
+  double margin_ = 0;
+};
+
+}  // namespace art2part

@@ -1,0 +1,93 @@
+#include "art2part/roughing/link_clearance.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "art2part/roughing/forbidden_region.h"
+
+namespace art2part {
+
+namespace {
+
+constexpr double kAboveHolder = 1e9;  // the spindle side above the holder: as wide as the holder's widest step
+
+double segmentDistance(const Point2& a, const Point2& b, const Point2& p, const Point2& q) {
+  auto pointToSegment = [](const Point2& x, const Point2& s0, const Point2& s1) {
+    const Point2 d = s1 - s0;
+    const double t = d.squaredNorm() > 0 ? std::clamp((x - s0).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+    return (s0 + t * d - x).norm();
+  };
+  auto cross = [](const Point2& u, const Point2& v) { return u.x() * v.y() - u.y() * v.x(); };
+  const double o1 = cross(b - a, p - a), o2 = cross(b - a, q - a), o3 = cross(q - p, a - p), o4 = cross(q - p, b - p);
+  if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0))) return 0;
+  return std::min({pointToSegment(p, a, b), pointToSegment(q, a, b), pointToSegment(a, p, q), pointToSegment(b, p, q)});
+}
+
+}  // namespace
+
+LinkClearance::LinkClearance(const Tool& tool, double margin) : margin_(margin) {
+  zones_.push_back({0, tool.flute_length, tool.diameter / 2});
+  double top = tool.flute_length, widest = tool.diameter / 2;
+  for (const BodyZone& zone : bodyZones(tool)) {
+    zones_.push_back({zone.from, zone.to, zone.radius});
+    top = std::max(top, zone.to);
+    widest = std::max(widest, zone.radius);
+  }
+  zones_.push_back({top, kAboveHolder, widest});
+}
+
+void LinkClearance::addSlab(const SlabState& slab) {
+  Slab s;
+  s.z = slab.z;
+  s.top = slab.top;
+  s.remaining = slab.remaining;
+  s.lo = Point2::Constant(1e300);
+  s.hi = Point2::Constant(-1e300);
+  for (const Ring& ring : regionRings(slab.remaining))
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      s.edges.push_back({ring[i], ring[(i + 1) % ring.size()]});
+      s.lo = s.lo.cwiseMin(ring[i]);
+      s.hi = s.hi.cwiseMax(ring[i]);
+    }
+  slabs_.push_back(std::move(s));
+}
+
+bool LinkClearance::segmentClearOf(const Slab& slab, const Point2& a, const Point2& b, double radius) {
+  if (slab.edges.empty()) return true;
+  const Point2 lo = a.cwiseMin(b) - Point2::Constant(radius), hi = a.cwiseMax(b) + Point2::Constant(radius);
+  if ((lo.array() > slab.hi.array()).any() || (hi.array() < slab.lo.array()).any()) return true;
+  if (regionContains(slab.remaining, a) || regionContains(slab.remaining, b)) return false;
+  for (const Edge& e : slab.edges) {
+    if (std::max(e.a.x(), e.b.x()) < lo.x() || std::min(e.a.x(), e.b.x()) > hi.x() ||
+        std::max(e.a.y(), e.b.y()) < lo.y() || std::min(e.a.y(), e.b.y()) > hi.y())
+      continue;
+    if (segmentDistance(a, b, e.a, e.b) < radius) return false;
+  }
+  return true;
+}
+
+bool LinkClearance::clearAt(const Point2& a, const Point2& b, double height) const {
+  for (const Zone& zone : zones_)
+    for (const Slab& slab : slabs_)
+      if (slab.top > height + zone.from && slab.z < height + zone.to &&
+          !segmentClearOf(slab, a, b, zone.radius + margin_))
+        return false;
+  return true;
+}
+
+double LinkClearance::lowestClear(const Point2& a, const Point2& b, double lowest, double ceiling) const {
+  std::vector<double> heights{lowest};
+  for (const Slab& slab : slabs_)
+    for (const Zone& zone : zones_) {
+      const double h = slab.top - zone.from + 1e-6;  // the zone's bottom just above the slab
+      if (h > lowest && h < ceiling) heights.push_back(h);
+    }
+  std::sort(heights.begin(), heights.end());
+  heights.erase(std::unique(heights.begin(), heights.end()), heights.end());
+  if (heights.size() > static_cast<std::size_t>(kMostTries)) heights.resize(kMostTries);
+  for (double h : heights)
+    if (h < ceiling && clearAt(a, b, h)) return h;
+  return ceiling;
+}
+
+}  // namespace art2part
