@@ -1,6 +1,7 @@
 // Clearing one slab: coverage, containment, entries, links and heights of clearLevel's moves.
 #include "art2part/roughing/clearing_paths.h"
 #include "art2part/roughing/link_clearance.h"
+#include "art2part/roughing/operation_moves.h"
 
 #include <gtest/gtest.h>
 
@@ -464,15 +465,16 @@ TEST(ClearingPaths, StayDownLinksHopOverClearedMaterialInsteadOfRetracting) {
 namespace {
 
 // Brute force: the tool at `height` over points of a-b every 0.05 mm, its radius every 0.5 mm of height up to its
-// holder's top (the spindle side above it as wide as the holder), against each slab's stock grown by that radius.
+// holder's top (the spindle side above it as wide as the holder), against each slab's stock grown by that radius and
+// the margin (none for a radius no wider than the cutter's: LinkClearance's rule) and `slack`.
 bool clearByProbing(const Tool& tool, const std::vector<SlabState>& slabs, const Point2& a, const Point2& b,
-                    double height, double margin) {
+                    double height, double margin, double slack) {
   const int samples = 1 + static_cast<int>((b - a).norm() / 0.05);
   for (const SlabState& slab : slabs)
     for (double h = std::max(0.0, slab.z - height); h <= slab.top - height; h += 0.5) {
       const double radius = h > toolLength(tool) ? holderTopRadius(tool) : toolRadiusAt(tool, h);
       if (radius <= 0) continue;
-      const Region grown = offsetRegion(slab.remaining, radius + margin);
+      const Region grown = offsetRegion(slab.remaining, radius + (radius <= tool.diameter / 2 ? 0 : margin) + slack);
       for (int i = 0; i <= samples; ++i)
         if (regionContains(grown, a + (b - a) * (static_cast<double>(i) / samples))) return false;
     }
@@ -507,15 +509,15 @@ TEST(LinkClearance, HeightsAreClearByProbingAndNotNeedlesslyHigh) {
         blocks.push_back(rectangle(c.x(), c.y(), c.x() + 5 + 20 * unit(random), c.y() + 5 + 20 * unit(random)));
       }
       slabs.push_back({top - 4, top, region(blocks)});
-      clearance.addSlab(slabs.back());
+      clearance.addSlab(slabs.back(), {});
     }
     const Point2 a(200 * unit(random), 200 * unit(random)), b(200 * unit(random), 200 * unit(random));
     const double lowest = 1;  // under every slab's top: only a way round the stock's sides is clear there
     const double height = clearance.lowestClear(a, b, lowest, ceiling);
     if (height < ceiling) {
-      EXPECT_TRUE(clearByProbing(tool, slabs, a, b, height, margin - 0.05)) << "height " << height;
+      EXPECT_TRUE(clearByProbing(tool, slabs, a, b, height, margin, -0.05)) << "height " << height;
     }
-    if (clearByProbing(tool, slabs, a, b, lowest, margin + 0.3)) {
+    if (clearByProbing(tool, slabs, a, b, lowest, margin, 0.3)) {
       EXPECT_EQ(height, lowest);
       ++lowest_kept;
     }
@@ -523,4 +525,51 @@ TEST(LinkClearance, HeightsAreClearByProbingAndNotNeedlesslyHigh) {
   }
   EXPECT_GE(raised, 3);       // the random cases include hops over stock
   EXPECT_GE(lowest_kept, 3);  // and ways clear at the lowest height
+}
+
+// Rest passes cut cluster after cluster (operation_moves.h): that order is sound only if pieces of different clusters
+// lie farther apart than the reach. Checked on random levels of boxes against Clipper: every piece lands in exactly
+// one cluster at its level, and two pieces within the reach of each other (the first grown by it meets the second)
+// share a cluster.
+TEST(PieceClusters, PiecesWithinTheReachShareACluster) {
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (int trial = 0; trial < 10; ++trial) {
+    SCOPED_TRACE(trial);
+    std::vector<ClearingLevel> levels(4);
+    for (ClearingLevel& level : levels) {
+      std::vector<Ring> boxes;
+      for (int i = 0; i < 6; ++i) {
+        const Point2 c(300 * unit(random), 300 * unit(random));
+        boxes.push_back(rectangle(c.x(), c.y(), c.x() + 2 + 30 * unit(random), c.y() + 2 + 8 * unit(random)));
+      }
+      level.centre = region(boxes);
+    }
+    const double reach = 20;
+    const std::vector<std::vector<Region>> clusters = pieceClusters(levels, reach);
+    struct Piece {
+      std::size_t cluster;
+      Region rings;
+    };
+    std::vector<Piece> pieces;
+    for (std::size_t c = 0; c < clusters.size(); ++c) {
+      ASSERT_EQ(clusters[c].size(), levels.size());
+      for (std::size_t i = 0; i < levels.size(); ++i)
+        for (RegionPiece& piece : regionPieces(clusters[c][i])) pieces.push_back({c, std::move(piece.rings)});
+    }
+    for (std::size_t i = 0; i < levels.size(); ++i) {
+      double area = 0;
+      for (const auto& cluster : clusters) area += regionArea(cluster[i]);
+      EXPECT_NEAR(area, regionArea(levels[i].centre), 1e-6);
+    }
+    int near_pairs = 0;
+    for (std::size_t a = 0; a < pieces.size(); ++a)
+      for (std::size_t b = a + 1; b < pieces.size(); ++b)
+        if (!regionEmpty(intersect(offsetRegion(pieces[a].rings, reach), pieces[b].rings))) {
+          ++near_pairs;
+          EXPECT_EQ(pieces[a].cluster, pieces[b].cluster);
+        }
+    EXPECT_GT(near_pairs, 0);
+    EXPECT_GT(clusters.size(), 1u);
+  }
 }

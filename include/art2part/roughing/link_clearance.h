@@ -7,6 +7,9 @@
 // only less as the operation goes on; a segment is clear of a slab when every body zone overlapping the slab's
 // heights keeps its radius plus the margin from every point of `remaining`. Slabs not finished are never crossed:
 // candidates start at the caller's lowest height, at or above the current slab's top.
+// The flutes, and a shank no wider than them, keep no margin, and `remaining` loses the whole disc the cutter swept
+// round every centre point (the slab's own record keeps a band kClearedInsetMm wide of it): otherwise no link could
+// pass where the tool has just cut beside a wall, a tool radius from the stock left on the wall.
 #pragma once
 
 #include <vector>
@@ -22,8 +25,9 @@ class LinkClearance {
   // `margin`: mm kept between any part of the tool and the stock (the holder margin of roughing).
   LinkClearance(const Tool& tool, double margin);
 
-  // A slab the operation has finished (its stock left, part section included). Slabs come top down.
-  void addSlab(const SlabState& slab);
+  // A slab the operation has finished (its stock left, part section included) and the centre region its level
+  // cleared (every point within the tool radius of it swept: clearing_paths.h). Slabs come top down.
+  void addSlab(const SlabState& slab, const Region& centre);
 
   // The lowest height in [lowest, ceiling) at which the tool tip may go straight from `a` to `b` with every body zone
   // clear of every finished slab, or `ceiling` when none is proven. Tries `lowest` and the heights where a zone's
@@ -34,7 +38,7 @@ class LinkClearance {
 
  private:
   struct Zone {
-    double from = 0, to = 0, radius = 0;  // above the tip, mm
+    double from = 0, to = 0, radius = 0;  // above the tip, mm; radius with the margin the zone keeps
   };
   struct Edge {
     Point2 a, b;
@@ -50,7 +54,7 @@ class LinkClearance {
 
   std::vector<Zone> zones_;
   std::vector<Slab> slabs_;
-  double margin_ = 0;
+  double radius_ = 0;
 };
 
 }  // namespace art2part

@@ -61,6 +61,11 @@ struct RoughingOptions {
     // previous operation's leftovers beyond the allowance) is left out: the tool would cut air round stock it cannot
     // reach. 0 keeps every piece.
     double least_target_mm2 = 1.0;
+    // A rest pass planned to remove less than this share of what the setups' operations before it are planned to
+    // remove is dropped (RoughingPlan::dropped), and the next rest tool starts from what it would have started from.
+    // The planned removal bounds the true one from above (the slabs' stock holds at least the stock there is), so a
+    // dropped pass removes less than this share in the simulation too. 0 keeps every pass.
+    double least_removal_share = 0.001;
   };
   // 5-axis voxel roughing after each setup's 3-axis operations (voxel_roughing.h).
   struct FiveAxis {
@@ -97,6 +102,17 @@ struct RoughingOperation {
   int ramps = 0, plunges = 0, retracts = 0;  // ramp entries, straight entries into stock (passes too short to ramp), retracts
   double plan_seconds = 0;
   int direct_levels = 0;      // levels whose grown forbidden region missed part of the shadow (taken directly there)
+  // The planner's slabs' stock within the tool radius of its centre regions, over each slab's height: at least what
+  // it removes, since those slabs hold at least the stock there is.
+  double planned_removal_mm3 = 0;
+};
+
+// A rest pass left out of the plan: it would have removed almost nothing (RoughingOptions::Rest::least_removal_share).
+struct DroppedOperation {
+  int setup = 0;
+  std::string kind, tool;
+  double planned_removal_mm3 = 0;  // what it was planned to remove, at most
+  std::string reason;              // one line for plan.json
 };
 
 // The stock left in one slab [z, top] of a setup frame (part section included), projected along the direction.
@@ -110,6 +126,7 @@ struct RoughingPlan {
   // Per setup (index as in the setup plan), in its frame: the stock its 3-axis operations left, slab by slab from the
   // top (empty for a setup with no operation). What finishing must still expect in the way of shanks and rapids.
   std::vector<std::vector<SlabState>> stock_left;
+  std::vector<DroppedOperation> dropped;  // rest passes planned and left out, in planning order
   double seconds = 0;
   int contours = 0;           // rings of centre regions over all levels
   int closed_open_mesh_edges = 0;  // the part's mesh was open: the edges of its boundary, closed (solid_closure.h)

@@ -65,7 +65,8 @@ nlohmann::json operationJson(const PlanResult& plan, const PlanOperation& op) {
     for (const RoughingLevel& l : r.levels) critical += l.critical ? 1 : 0;
     j.update({{"length_mm", r.feed_mm}, {"rapid_mm", r.rapid_mm}, {"levels", r.levels.size()},
               {"critical_levels", critical}, {"ramps", r.ramps}, {"plunges", r.plunges}, {"retracts", r.retracts},
-              {"plan_seconds", r.plan_seconds}, {"direct_shadow_levels", r.direct_levels}});
+              {"plan_seconds", r.plan_seconds}, {"direct_shadow_levels", r.direct_levels},
+              {"planned_removal_mm3", r.planned_removal_mm3}});
   } else {
     const FinishingOperation& f = plan.finishing.operations.at(op.source);
     j.update({{"length_mm", f.feed_mm}, {"rapid_mm", f.rapid_mm}, {"faces", f.faces},
@@ -172,6 +173,11 @@ nlohmann::json planJson(const Part& part, const PlanResult& plan, const Machine&
     addFigures(op, figures.operations[i]);
     j["operations"].push_back(op);
   }
+  // Rest passes planned and left out because they would remove almost nothing: one line each.
+  j["dropped_operations"] = nlohmann::json::array();
+  for (const DroppedOperation& d : plan.roughing.dropped)
+    j["dropped_operations"].push_back({{"setup", d.setup}, {"kind", d.kind}, {"tool", d.tool},
+                                       {"planned_removal_mm3", d.planned_removal_mm3}, {"reason", d.reason}});
   j["roughing_region_failures"] = plan.roughing.region_failures;
   j["roughing_direct_shadow_levels"] = plan.roughing.direct_levels;
 

@@ -10,6 +10,7 @@ namespace art2part {
 namespace {
 
 constexpr double kAboveHolder = 1e9;  // the spindle side above the holder: as wide as the holder's widest step
+constexpr double kGridSlack = 1e-3;   // mm: a centre point lies a tool radius from its swept disc's rim, to rounding
 
 double segmentDistance(const Point2& a, const Point2& b, const Point2& p, const Point2& q) {
   auto pointToSegment = [](const Point2& x, const Point2& s0, const Point2& s1) {
@@ -25,25 +26,26 @@ double segmentDistance(const Point2& a, const Point2& b, const Point2& p, const 
 
 }  // namespace
 
-LinkClearance::LinkClearance(const Tool& tool, double margin) : margin_(margin) {
-  zones_.push_back({0, tool.flute_length, tool.diameter / 2});
-  double top = tool.flute_length, widest = tool.diameter / 2;
+LinkClearance::LinkClearance(const Tool& tool, double margin) : radius_(tool.diameter / 2) {
+  auto withMargin = [&](double radius) { return radius <= radius_ ? radius - kGridSlack : radius + margin; };
+  zones_.push_back({0, tool.flute_length, withMargin(radius_)});
+  double top = tool.flute_length, widest = radius_;
   for (const BodyZone& zone : bodyZones(tool)) {
-    zones_.push_back({zone.from, zone.to, zone.radius});
+    zones_.push_back({zone.from, zone.to, withMargin(zone.radius)});
     top = std::max(top, zone.to);
     widest = std::max(widest, zone.radius);
   }
-  zones_.push_back({top, kAboveHolder, widest});
+  zones_.push_back({top, kAboveHolder, withMargin(widest)});
 }
 
-void LinkClearance::addSlab(const SlabState& slab) {
+void LinkClearance::addSlab(const SlabState& slab, const Region& centre) {
   Slab s;
   s.z = slab.z;
   s.top = slab.top;
-  s.remaining = slab.remaining;
+  s.remaining = regionEmpty(centre) ? slab.remaining : subtract(slab.remaining, offsetRegion(centre, radius_));
   s.lo = Point2::Constant(1e300);
   s.hi = Point2::Constant(-1e300);
-  for (const Ring& ring : regionRings(slab.remaining))
+  for (const Ring& ring : regionRings(s.remaining))
     for (std::size_t i = 0; i < ring.size(); ++i) {
       s.edges.push_back({ring[i], ring[(i + 1) % ring.size()]});
       s.lo = s.lo.cwiseMin(ring[i]);
@@ -70,7 +72,7 @@ bool LinkClearance::clearAt(const Point2& a, const Point2& b, double height) con
   for (const Zone& zone : zones_)
     for (const Slab& slab : slabs_)
       if (slab.top > height + zone.from && slab.z < height + zone.to &&
-          !segmentClearOf(slab, a, b, zone.radius + margin_))
+          !segmentClearOf(slab, a, b, zone.radius))
         return false;
   return true;
 }

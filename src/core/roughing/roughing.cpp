@@ -3,11 +3,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <optional>
 
 #include "art2part/roughing/forbidden_region.h"
 #include "art2part/roughing/in_process_stock.h"
-#include "art2part/roughing/link_clearance.h"
+#include "art2part/roughing/operation_moves.h"
 #include "art2part/roughing/shadow.h"
 
 namespace art2part {
@@ -29,9 +28,6 @@ constexpr double kRestTargetSliverMm2 = 0.01;  // and a piece of it smaller than
 constexpr double kCentreSliverMm2 = 0.001;     // centre regions smaller than this are dropped
 constexpr double kAirGapMm = 0.1;              // centres farther than radius + this from the stock cut air
 constexpr double kClearedInsetMm = 0.05;       // the cleared area: centres grown by the radius less this
-// Links between passes may hop over the centre regions of this many levels above (ClearedLevel): the nearest ones
-// are the lowest hops; farther up, the clearance plane costs little more.
-constexpr std::size_t kLinkLevels = 3;
 
 // The pieces of a centre region whose sweep (each grown by `reach`) takes at least `least_mm2` of `target`.
 Region piecesReaching(const Region& centre, const Region& target, double reach, double least_mm2) {
@@ -194,9 +190,7 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
   clearing.stay_down = options.clearing.stay_down;
   clearing.feed_mm_min = tool.feed_mm_min;
   clearing.rapid_mm_min = options.rapid_mm_min;
-  std::optional<Eigen::Vector3d> tool_at;  // setup frame: where the last level left the tool
-  std::vector<ClearedLevel> cleared_above;  // nearest first
-  LinkClearance link_clearance(tool, options.clearing.holder_margin);  // over the slabs finished
+  OperationLevels planned;  // the levels' regions: the moves are written once all are known
 
   // Shadows at the levels only: the body zones keep clear of the stock left above, which holds the part's sections,
   // so no zone bottom needs a shadow of its own.
@@ -248,11 +242,6 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
     ClearingLevel clear;
     clear.z = z;
     clear.top = top;
-    clear.from = tool_at;
-    clear.cleared = cleared_above;
-    clear.clear_height = [&link_clearance](const Point2& a, const Point2& b, double lowest, double ceiling) {
-      return link_clearance.lowestClear(a, b, lowest, ceiling);
-    };
     const double beyond = before ? kRestCentreBeyondStockMm : kCentreBeyondStockMm;
     if (!regionEmpty(target))
       clear.centre = dropSlivers(subtract(offsetRegion(target, r + beyond), forbidden), kCentreSliverMm2);
@@ -266,31 +255,29 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
     if (before && options.rest.least_target_mm2 > 0)  // only where its sweep meets stock it is to remove
       clear.centre = piecesReaching(clear.centre, target, r - kClearedInsetMm, options.rest.least_target_mm2);
     clear.air = subtract(clear.centre, offsetRegion(stock, r + kAirGapMm));
-    ClearingStats stats;
-    const std::vector<ClearingPoint> moves = clearLevel(clear, clearing, &stats);
-    appendMoves(moves, setup.frame, tool, setup_index, op);
-    countEntries(stats, op);
-    if (!moves.empty()) tool_at = moves.back().tip;
-    if (!regionEmpty(clear.centre)) {
-      cleared_above.insert(cleared_above.begin(), {z, clear.centre});
-      if (cleared_above.size() > kLinkLevels) cleared_above.pop_back();
-    }
 
     const Region cleared = offsetRegion(clear.centre, r - kClearedInsetMm);
     SlabState slab{z, top, subtract(stock, cleared)};
     level.cleared_mm2 = regionArea(intersect(stock, cleared));
+    // What the tool can take: its whole disc round every centre point, over the slab (links, ramps and feeds stay in
+    // the centre region at or above the level).
+    if (!regionEmpty(clear.centre))
+      op.planned_removal_mm3 += regionArea(intersect(stock, offsetRegion(clear.centre, r))) * (top - z);
     level.remaining_mm2 = regionArea(slab.remaining);
     level.rings = static_cast<int>(clear.centre.size());
     slabs.push_back(std::move(slab));
-    link_clearance.addSlab(slabs.back());
     left_above.push_back({top, &slabs.back().remaining});
+    planned.levels.push_back(std::move(clear));
     top = z;
   }
-  if (tool_at && tool_at->z() < clearing.clearance_z) {  // the retract at the end
-    appendMoves({{Eigen::Vector3d(tool_at->x(), tool_at->y(), clearing.clearance_z), ClearingMove::Rapid}},
-                setup.frame, tool, setup_index, op);
-    ++op.retracts;
-  }
+  planned.slabs = slabs;
+  OperationMovesOptions moves_options;
+  moves_options.clearing = clearing;
+  moves_options.holder_margin = options.clearing.holder_margin;
+  moves_options.by_clusters = before != nullptr;  // rest passes: cluster after cluster
+  ClearingStats stats;
+  appendMoves(operationMoves(planned, tool, moves_options, stats), setup.frame, tool, setup_index, op);
+  countEntries(stats, op);
   op.levels = std::move(levels);
   estimateTime(tool, options, op);
   pass.left = std::move(slabs);

@@ -1,6 +1,7 @@
 // Tool choice for roughing (thesis future work: tool selection) and the stage over every setup.
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <memory>
 
 #include "art2part/geometry/solid_closure.h"
@@ -27,6 +28,13 @@ std::vector<const Tool*> roughingTools(const ToolLibrary& library) {
 }
 
 namespace {
+
+DroppedOperation droppedPass(const RoughingOperation& op, double share, double planned_total) {
+  char line[200];
+  std::snprintf(line, sizeof line, "planned to remove %.1f mm3, under %.2g %% of the %.0f mm3 planned before it",
+                op.planned_removal_mm3, 100 * share, planned_total);
+  return {op.setup, op.kind, op.tool, op.planned_removal_mm3, line};
+}
 
 // The tool choice measures each candidate on kChoiceLevels levels evenly down the stock, against shadows every
 // kChoiceShadowSpacingMm above the lowest (for shanks and holders); the centre may go kChoiceCentreBeyondMm beyond
@@ -117,6 +125,9 @@ void dropSetup(RoughingPlan& plan, int k) {
   plan.operations.erase(std::remove_if(plan.operations.begin(), plan.operations.end(),
                                        [k](const RoughingOperation& op) { return op.setup == k; }),
                         plan.operations.end());
+  plan.dropped.erase(std::remove_if(plan.dropped.begin(), plan.dropped.end(),
+                                    [k](const DroppedOperation& op) { return op.setup == k; }),
+                     plan.dropped.end());
 }
 
 bool cuts(const RoughingOperation& op) {
@@ -151,6 +162,7 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
   plan.stock_left.resize(setups.setups.size());
   const int n = static_cast<int>(setups.setups.size());
   long levels_done = 0;
+  double planned_total = 0;  // mm3 the operations kept so far are planned to remove
   for (int k = 0; k < n && !plan.cancelled; ++k) {
     // Each operation's reports as a share of all the setups, levels counted on: setup k spans [k/n, (k+1)/n], shared
     // out among the operations it may have (the main one, the rest passes), operation j taking the j-th part.
@@ -192,8 +204,9 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
       break;
     }
     std::vector<SlabState> left = std::move(main.left);
-    if (cuts(main.operation)) plan.operations.push_back(std::move(main.operation));
-    else continue;
+    if (!cuts(main.operation)) continue;
+    planned_total += main.operation.planned_removal_mm3;
+    plan.operations.push_back(std::move(main.operation));
     // Rest passes, each with a tool at most half the size of the one before, over what that one left.
     const Tool* previous = tool;
     for (int pass = 0; options.rest.enabled && pass < options.rest.passes; ++pass) {
@@ -209,9 +222,18 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
         plan.cancelled = true;
         break;
       }
-      if (cuts(op.operation)) plan.operations.push_back(std::move(op.operation));
-      left = std::move(op.left);
       previous = rest;
+      if (!cuts(op.operation)) {
+        left = std::move(op.left);
+        continue;
+      }
+      if (op.operation.planned_removal_mm3 < options.rest.least_removal_share * planned_total) {
+        plan.dropped.push_back(droppedPass(op.operation, options.rest.least_removal_share, planned_total));
+        continue;  // the next rest tool starts from what this one started from
+      }
+      planned_total += op.operation.planned_removal_mm3;
+      plan.operations.push_back(std::move(op.operation));
+      left = std::move(op.left);
     }
     if (plan.cancelled) {
       dropSetup(plan, k);
