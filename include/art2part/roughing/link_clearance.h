@@ -25,9 +25,10 @@ class LinkClearance {
   // `margin`: mm kept between any part of the tool and the stock (the holder margin of roughing).
   LinkClearance(const Tool& tool, double margin);
 
-  // A slab the operation has finished (its stock left, part section included) and the centre region its level
-  // cleared (every point within the tool radius of it swept: clearing_paths.h). Slabs come top down.
-  void addSlab(const SlabState& slab, const Region& centre);
+  // A slab the operation has finished (its stock left, part section included) and what its level swept: the centre
+  // region grown by the tool radius (every point within the radius of it is swept: clearing_paths.h). Slabs come
+  // top down.
+  void addSlab(const SlabState& slab, const Region& swept);
 
   // The lowest height in [lowest, ceiling) at which the tool tip may go straight from `a` to `b` with every body zone
   // clear of every finished slab, or `ceiling` when none is proven. Tries `lowest` and the heights where a zone's
@@ -54,7 +55,6 @@ class LinkClearance {
 
   std::vector<Zone> zones_;
   std::vector<Slab> slabs_;
-  double radius_ = 0;
 };
 
 }  // namespace art2part

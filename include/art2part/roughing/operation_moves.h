@@ -22,6 +22,7 @@ namespace art2part {
 struct OperationLevels {
   std::vector<ClearingLevel> levels;  // top down: z, top, centre, air (links are filled in here)
   std::vector<SlabState> slabs;       // per level: the stock it leaves (for the stock-model links)
+  std::vector<Region> swept;          // per level: its centre region grown by the tool radius (what it sweeps)
 };
 
 struct OperationMovesOptions {

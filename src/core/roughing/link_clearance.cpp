@@ -26,10 +26,11 @@ double segmentDistance(const Point2& a, const Point2& b, const Point2& p, const 
 
 }  // namespace
 
-LinkClearance::LinkClearance(const Tool& tool, double margin) : radius_(tool.diameter / 2) {
-  auto withMargin = [&](double radius) { return radius <= radius_ ? radius - kGridSlack : radius + margin; };
-  zones_.push_back({0, tool.flute_length, withMargin(radius_)});
-  double top = tool.flute_length, widest = radius_;
+LinkClearance::LinkClearance(const Tool& tool, double margin) {
+  const double cutter = tool.diameter / 2;
+  auto withMargin = [&](double radius) { return radius <= cutter ? radius - kGridSlack : radius + margin; };
+  zones_.push_back({0, tool.flute_length, withMargin(cutter)});
+  double top = tool.flute_length, widest = cutter;
   for (const BodyZone& zone : bodyZones(tool)) {
     zones_.push_back({zone.from, zone.to, withMargin(zone.radius)});
     top = std::max(top, zone.to);
@@ -38,11 +39,11 @@ LinkClearance::LinkClearance(const Tool& tool, double margin) : radius_(tool.dia
   zones_.push_back({top, kAboveHolder, withMargin(widest)});
 }
 
-void LinkClearance::addSlab(const SlabState& slab, const Region& centre) {
+void LinkClearance::addSlab(const SlabState& slab, const Region& swept) {
   Slab s;
   s.z = slab.z;
   s.top = slab.top;
-  s.remaining = regionEmpty(centre) ? slab.remaining : subtract(slab.remaining, offsetRegion(centre, radius_));
+  s.remaining = regionEmpty(swept) ? slab.remaining : subtract(slab.remaining, swept);
   s.lo = Point2::Constant(1e300);
   s.hi = Point2::Constant(-1e300);
   for (const Ring& ring : regionRings(s.remaining))

@@ -83,7 +83,7 @@ void levelByLevel(const OperationLevels& levels, const Tool& tool, const Operati
       return link_clearance.lowestClear(a, b, lowest, ceiling);
     };
     writer.level(std::move(clear));
-    if (i < levels.slabs.size()) link_clearance.addSlab(levels.slabs[i], levels.levels[i].centre);
+    if (i < levels.slabs.size()) link_clearance.addSlab(levels.slabs[i], levels.swept[i]);
     remember(cleared, levels.levels[i].z, levels.levels[i].centre);
   }
 }
@@ -157,7 +157,7 @@ void clusterByCluster(const OperationLevels& levels, const Tool& tool, const Ope
       for (std::size_t c = 0; c < clusters.size(); ++c)
         if (!done[c] && !sweeps[c][i].empty()) pending.insert(pending.end(), sweeps[c][i].begin(), sweeps[c][i].end());
       if (!pending.empty()) slab.remaining = unite(slab.remaining, pending);
-      link_clearance.addSlab(slab, pieces);
+      link_clearance.addSlab(slab, sweeps[next][i]);
     }
   }
 }

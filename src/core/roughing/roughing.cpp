@@ -261,13 +261,14 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
     level.cleared_mm2 = regionArea(intersect(stock, cleared));
     // What the tool can take: its whole disc round every centre point, over the slab (links, ramps and feeds stay in
     // the centre region at or above the level).
-    if (!regionEmpty(clear.centre))
-      op.planned_removal_mm3 += regionArea(intersect(stock, offsetRegion(clear.centre, r))) * (top - z);
+    Region swept = regionEmpty(clear.centre) ? Region{} : offsetRegion(clear.centre, r);
+    op.planned_removal_mm3 += regionArea(intersect(stock, swept)) * (top - z);
     level.remaining_mm2 = regionArea(slab.remaining);
     level.rings = static_cast<int>(clear.centre.size());
     slabs.push_back(std::move(slab));
     left_above.push_back({top, &slabs.back().remaining});
     planned.levels.push_back(std::move(clear));
+    planned.swept.push_back(std::move(swept));
     top = z;
   }
   planned.slabs = slabs;
