@@ -47,8 +47,10 @@ struct RoughingOptions {
     double clearance = 5.0;       // mm above the stock's top: the retract plane of each setup
     double holder_margin = 0.5;   // mm kept between shank or holder and material
     // Links between passes, pieces and levels inside cleared material or over stock the slabs prove clear
-    // (clearing_paths.h, link_clearance.h); false: every link over the clearance plane.
-    bool stay_down = true;
+    // (clearing_paths.h, link_clearance.h), rest passes cluster by cluster (operation_moves.h); false: every link over
+    // the clearance plane, level by level. Off by default until CTC-02's simulation is explained: its whole plan with
+    // stay-down links showed 179,239 collisions (CTC-01, featuretype and ANC101: none).
+    bool stay_down = false;
   };
   // Smaller tools over what the first left.
   struct Rest {
