@@ -500,8 +500,11 @@ std::size_t nextPiece(const std::vector<std::vector<Polyline>>& passes, const st
   return best;
 }
 
+// Whether each end of a pass lies in air (front, back).
+using AirEnds = std::pair<bool, bool>;
+
 // The unused pass with an end nearest the tool, turned to start there; an end in air comes first if only one is.
-Polyline nextPass(std::vector<Polyline>& passes, std::vector<bool>& used, const ClearingLevel& level,
+Polyline nextPass(std::vector<Polyline>& passes, std::vector<bool>& used, const std::vector<AirEnds>& air,
                   const PathWriter& writer) {
   std::size_t best = passes.size();
   double best_distance = std::numeric_limits<double>::infinity();
@@ -509,7 +512,7 @@ Polyline nextPass(std::vector<Polyline>& passes, std::vector<bool>& used, const 
   for (std::size_t k = 0; k < passes.size(); ++k) {
     if (used[k]) continue;
     const Polyline& pass = passes[k];
-    const bool front_air = regionContains(level.air, pass.front()), back_air = regionContains(level.air, pass.back());
+    const auto [front_air, back_air] = air[k];
     bool reversed = false;
     double d = 0;
     if (writer.placed()) {
@@ -543,8 +546,11 @@ void cutZigzag(const std::vector<RegionPiece>& pieces, const ClearingLevel& leve
   for (std::size_t i = nextPiece(passes, done, writer); i < passes.size(); i = nextPiece(passes, done, writer)) {
     done[i] = true;
     std::vector<bool> used(passes[i].size(), false);
+    std::vector<AirEnds> air;  // looked up once: nextPass weighs every unused pass at each choice
+    for (const Polyline& pass : passes[i])
+      air.emplace_back(regionContains(level.air, pass.front()), regionContains(level.air, pass.back()));
     for (std::size_t n = 0; n < passes[i].size(); ++n) {
-      const Polyline pass = nextPass(passes[i], used, level, writer);
+      const Polyline pass = nextPass(passes[i], used, air, writer);
       if (!writer.linkTo(pass.front(), options.stay_down, writer.entrySeconds(pass.front()))) writer.enterPass(pass);
       for (const Point2& p : pass) writer.feed(p);
       ++stats.passes;
