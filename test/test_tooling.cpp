@@ -9,6 +9,7 @@
 #include <random>
 #include <set>
 
+#include "art2part/roughing/engagement_clearing.h"
 #include "art2part/tooling/tool.h"
 #include "art2part/tooling/toolpath.h"
 
@@ -93,6 +94,28 @@ TEST(ToolLibrary, EveryToolIsValidAndRealistic) {
     EXPECT_LE(tool.max_stepdown, 3 * tool.diameter + 1e-9);
     EXPECT_GT(toolLength(tool), tool.stickout + 50);  // a holder a machinist would recognise
   }
+}
+
+// The high-efficiency roughing cutters: the band each lists (max_stepover) is the one constant-engagement clearing
+// takes at its engagement limit on turns of two tool radii (engagement_clearing.h), its step-down within the flutes,
+// its feed the stub mill's of its size with radial chip thinning at the limit (sin 78.5 deg / sin 60 deg = 1.13).
+TEST(ToolLibrary, EngagementCuttersAgreeWithThePlannersBand) {
+  const ToolLibrary library = loadToolLibrary(kLibrary);
+  int cutters = 0;
+  for (const Tool& tool : library.tools) {
+    if (tool.max_engagement_deg == 0) continue;
+    SCOPED_TRACE(tool.id);
+    ++cutters;
+    const double r = tool.diameter / 2;
+    EXPECT_NEAR(tool.max_stepover, engagementStepover(r, 2 * r, tool.max_engagement_deg), 0.01);
+    EXPECT_LE(tool.max_stepdown, tool.flute_length - 2 + 1e-9);
+    char stub_id[32];
+    std::snprintf(stub_id, sizeof stub_id, "flat%g", tool.diameter);
+    const Tool* stub = library.find(stub_id);
+    ASSERT_NE(stub, nullptr);
+    EXPECT_NEAR(tool.feed_mm_min / stub->feed_mm_min, 0.9798 / 0.8660, 0.01);
+  }
+  EXPECT_GE(cutters, 4);
 }
 
 // ---- the drill cabinet (drill_series) -------------------------------------------------------------------------------
@@ -288,6 +311,12 @@ TEST(ToolCheck, NamesToolAndField) {
   tool = makeTool(ToolType::Flat, 10, 0);
   tool.holder.front().diameter = 8;
   EXPECT_TRUE(contains(failure(tool), "holder")) << failure(tool);
+  tool = makeTool(ToolType::Ball, 10, 5);
+  tool.max_engagement_deg = 60;
+  EXPECT_TRUE(contains(failure(tool), "max_engagement_deg")) << failure(tool);
+  tool = makeTool(ToolType::Flat, 10, 0);
+  tool.max_engagement_deg = 200;
+  EXPECT_TRUE(contains(failure(tool), "max_engagement_deg")) << failure(tool);
   tool = makeTool(ToolType::Drill, 10, 0);
   tool.point_angle_deg = 180;
   EXPECT_TRUE(contains(failure(tool), "point_angle_deg")) << failure(tool);
@@ -348,6 +377,7 @@ void expectSameTool(const Tool& a, const Tool& b) {
   EXPECT_EQ(a.flute_length, b.flute_length);
   EXPECT_EQ(a.shank_diameter, b.shank_diameter);
   EXPECT_EQ(a.stickout, b.stickout);
+  EXPECT_EQ(a.max_engagement_deg, b.max_engagement_deg);
   ASSERT_EQ(a.holder.size(), b.holder.size());
   for (size_t s = 0; s < a.holder.size(); ++s) {
     EXPECT_EQ(a.holder[s].diameter, b.holder[s].diameter);
@@ -380,7 +410,7 @@ TEST_F(ToolsJson, HasExactlyTheContractKeys) {
   const std::set<std::string> contract = {"id",   "type", "diameter", "corner_radius", "flute_length", "shank_diameter",
                                           "stickout", "holder"};
   const std::set<std::string> extras = {"flutes",        "spindle_rpm",  "feed_mm_min", "plunge_mm_min",
-                                        "max_stepdown", "max_stepover", "material"};
+                                        "max_stepdown", "max_stepover", "material", "max_engagement_deg"};
   for (const auto& tool : list) {
     SCOPED_TRACE(tool.dump());
     for (const std::string& key : contract) EXPECT_TRUE(tool.contains(key)) << key;

@@ -39,6 +39,8 @@ struct ClearingLevel {
   double top = 0;        // the top of the slab: above it, every point of `centre` has been cleared already
   Region centre;         // where the tool centre may go at this level and everything in it is to be cleared
   Region air;            // where the tool centre may plunge straight down (its disc meets no stock in the slab)
+  Region stock_reach;    // where the tool centre's disc meets stock in the slab, inside `centre` or not (air is
+                         // `centre` less this); engagement clearing only (the material round the region)
   // Stay-down links only (ClearingOptions::stay_down):
   std::optional<Eigen::Vector3d> from;  // where the tool is (the last point of the level before); none: the
                                         // clearance plane. Its column must be clear from its height up.
@@ -98,6 +100,7 @@ struct ClearingStats {
   int retracts = 0;                // rapids up to the clearance plane, the last one included
   int level_links = 0;             // stay-down: links fed along the level
   int hops = 0;                    // stay-down: links over cleared material below the clearance plane
+  double unbounded_mm = 0;         // engagement clearing: mm cut where the engagement bound does not hold
 };
 std::vector<ClearingPoint> clearLevel(const ClearingLevel& level, const ClearingOptions& options,
                                       ClearingStats* stats = nullptr);

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "art2part/roughing/clearing_paths.h"
+#include "art2part/roughing/engagement_clearing.h"
 #include "art2part/roughing/roughing.h"
 #include "art2part/tooling/tool.h"
 
@@ -29,6 +30,8 @@ struct OperationMovesOptions {
   ClearingOptions clearing;   // stay_down decides whether links are kept low at all
   double holder_margin = 0.5;  // mm kept between the body and the stock on a link (LinkClearance)
   bool by_clusters = false;    // cut cluster after cluster (rest passes), else level after level
+  bool by_engagement = false;  // each level front by front (clearLevelByEngagement, with `engagement`), else zig-zag
+  EngagementOptions engagement;
 };
 
 // The operation's moves, starting with a rapid at the clearance plane and ending with a retract to it (none when no

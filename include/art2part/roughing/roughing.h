@@ -51,6 +51,15 @@ struct RoughingOptions {
     // the clearance plane, level by level. Off by default until CTC-02's simulation is explained: its whole plan with
     // stay-down links showed 179,239 collisions (CTC-01, featuretype and ANC101: none).
     bool stay_down = false;
+    // How the main pass clears a level. Engagement: with the largest of the library's high-efficiency cutters
+    // (Tool::max_engagement_deg) that clears nearly what the smallest does, front by front under the cutter's
+    // engagement limit at its own step-down and feed (engagement_clearing.h); where the library has none, as ZigZag.
+    // ZigZag: a conventional end mill, zig-zag and contour passes a stepover apart. Rest passes are zig-zag always.
+    // ZigZag by default until engagement clearing plans large parts in time: CTC-01's plan took minutes per setup
+    // (a Clipper offset of the whole cleared region per front).
+    enum class Strategy { Engagement, ZigZag };
+    Strategy strategy = Strategy::ZigZag;
+    double corner_radius_ratio = 2.0;  // engagement: least radius of a front's turn round material, in tool radii
   };
   // Smaller tools over what the first left.
   struct Rest {

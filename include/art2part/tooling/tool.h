@@ -36,6 +36,11 @@ struct Tool {
   double plunge_mm_min = 300;   // feed along the axis into material
   double max_stepdown = 0;      // mm, 0 = diameter / 2
   double max_stepover = 0;      // mm, 0 = 0.4 * diameter
+  // A high-efficiency roughing cutter (chip breakers, cutting data for light radial cuts at full depth): the most of
+  // its circumference that may be in material, degrees; 0 = a conventional end mill (full-width cuts at
+  // max_stepdown). A tool with a limit is used only by constant-engagement clearing (engagement_clearing.h), which
+  // keeps to it; its max_stepdown and feed are for that, its max_stepover the band it takes on a straight cut.
+  double max_engagement_deg = 0;
   std::string material = "carbide";
 };
 

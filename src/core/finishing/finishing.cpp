@@ -66,11 +66,12 @@ void checkOptions(const FinishingOptions& o) {
     throw InputError("finishing: area fraction must be in (0, 1] and rest tools not negative");
 }
 
-// Flat end mills by diameter, largest first; balls likewise.
+// Flat end mills by diameter, largest first; balls likewise. Not the high-efficiency roughing cutters: their
+// engagement limit rules out full-width and slotting passes.
 std::vector<const Tool*> toolsOfType(const ToolLibrary& library, ToolType type) {
   std::vector<const Tool*> tools;
   for (const Tool& t : library.tools)
-    if (t.type == type) tools.push_back(&t);
+    if (t.type == type && t.max_engagement_deg == 0) tools.push_back(&t);
   std::stable_sort(tools.begin(), tools.end(), [](const Tool* a, const Tool* b) {
     if (a->diameter != b->diameter) return a->diameter > b->diameter;
     return a->flute_length < b->flute_length;

@@ -214,7 +214,9 @@ Choice chooseHelixMill(const Hole& hole, const ToolLibrary& library, const HoleO
     return choice;
   }
   for (const Tool& tool : library.tools) {
-    if (tool.type != ToolType::Flat || tool.diameter < lo - kSizeSlack || tool.diameter > hi + kSizeSlack) continue;
+    if (tool.type != ToolType::Flat || tool.max_engagement_deg > 0 || tool.diameter < lo - kSizeSlack ||
+        tool.diameter > hi + kSizeSlack)
+      continue;
     const std::string problem = reachProblem(hole, tool, tip, 0.5 * (hole.diameter - tool.diameter), o);
     if (!problem.empty()) {
       if (choice.reason.empty() || choice.reason == range) choice.reason = "helix: " + problem;

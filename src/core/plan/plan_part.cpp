@@ -202,7 +202,7 @@ SetupPlan planPartSetups(const Part& part, const VisibilityResult& visibility, c
   if (!options.finish || setups.cancelled) return setups;
   double longest_flutes = 0;
   for (const Tool& t : library.tools)
-    if (t.type == ToolType::Flat) longest_flutes = std::max(longest_flutes, t.flute_length);
+    if (t.type == ToolType::Flat && t.max_engagement_deg == 0) longest_flutes = std::max(longest_flutes, t.flute_length);
   for (Setup& s : finishingSetups(part, visibility, setups, longest_flutes, stageFinishingOptions(options),
                                   options.finishing_setups))
     setups.setups.push_back(std::move(s));

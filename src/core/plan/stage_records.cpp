@@ -50,7 +50,7 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(SetupPlan, mode, max_tilt_deg, setups, unmach
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(HolderStep, diameter, length)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Tool, id, type, diameter, corner_radius, point_angle_deg, flute_length,
                                    shank_diameter, stickout, holder, flutes, spindle_rpm, feed_mm_min, plunge_mm_min,
-                                   max_stepdown, max_stepover, material)
+                                   max_stepdown, max_stepover, max_engagement_deg, material)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(HoleSegment, kind, faces, from, to, diameter_from, diameter_to)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Hole, axis, mouth, diameter, bore_start, depth, total_depth, bottom,
                                    point_angle_deg, counterbore_diameter, counterbore_depth, countersink_angle_deg,

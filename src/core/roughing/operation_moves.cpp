@@ -39,11 +39,14 @@ std::size_t findRoot(std::vector<std::size_t>& parent, std::size_t i) {
 // Writes levels one after the other, linking each to where the last one left the tool.
 class MoveWriter {
  public:
-  MoveWriter(const ClearingOptions& clearing, ClearingStats& stats) : clearing_(clearing), stats_(stats) {}
+  MoveWriter(const OperationMovesOptions& options, ClearingStats& stats)
+      : options_(options), clearing_(options.clearing), stats_(stats) {}
 
   void level(ClearingLevel clear) {
     clear.from = at_;
-    const std::vector<ClearingPoint> moves = clearLevel(clear, clearing_, &stats_);
+    const std::vector<ClearingPoint> moves = options_.by_engagement
+                                                 ? clearLevelByEngagement(clear, clearing_, options_.engagement, &stats_)
+                                                 : clearLevel(clear, clearing_, &stats_);
     moves_.insert(moves_.end(), moves.begin(), moves.end());
     if (!moves.empty()) at_ = moves.back().tip;
   }
@@ -59,6 +62,7 @@ class MoveWriter {
   }
 
  private:
+  const OperationMovesOptions& options_;
   const ClearingOptions& clearing_;
   ClearingStats& stats_;
   std::optional<Eigen::Vector3d> at_;  // where the last level left the tool
@@ -197,7 +201,7 @@ std::vector<std::vector<Region>> pieceClusters(const std::vector<ClearingLevel>&
 
 std::vector<ClearingPoint> operationMoves(const OperationLevels& levels, const Tool& tool,
                                           const OperationMovesOptions& options, ClearingStats& stats) {
-  MoveWriter writer(options.clearing, stats);
+  MoveWriter writer(options, stats);
   if (options.by_clusters && options.clearing.stay_down) clusterByCluster(levels, tool, options, writer);
   else levelByLevel(levels, tool, options, writer);
   return writer.finish();

@@ -170,7 +170,9 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
   const InProcessStock* in_process = start_from.earlier;
   op.setup = setup_index;
   op.tool = tool.id;
-  op.kind = before ? "rest roughing" : "roughing";
+  // A high-efficiency cutter clears front by front under its engagement limit; rest passes take conventional tools.
+  const bool by_engagement = !before && tool.max_engagement_deg > 0;
+  op.kind = before ? "rest roughing" : by_engagement ? "adaptive roughing" : "roughing";
   const SetupGeometry g = setupGeometry(part, setup, options);
   std::vector<RoughingLevel> levels =
       roughingLevels(part, g.part, g.stock_top, g.stock_bottom, stepdownFor(tool, options, before != nullptr), options);
@@ -254,7 +256,8 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
     }
     if (before && options.rest.least_target_mm2 > 0)  // only where its sweep meets stock it is to remove
       clear.centre = piecesReaching(clear.centre, target, r - kClearedInsetMm, options.rest.least_target_mm2);
-    clear.air = subtract(clear.centre, offsetRegion(stock, r + kAirGapMm));
+    clear.stock_reach = offsetRegion(stock, r + kAirGapMm);
+    clear.air = subtract(clear.centre, clear.stock_reach);
 
     const Region cleared = offsetRegion(clear.centre, r - kClearedInsetMm);
     SlabState slab{z, top, subtract(stock, cleared)};
@@ -276,6 +279,10 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
   moves_options.clearing = clearing;
   moves_options.holder_margin = options.clearing.holder_margin;
   moves_options.by_clusters = before != nullptr;  // rest passes: cluster after cluster
+  moves_options.by_engagement = by_engagement;
+  moves_options.engagement.tool_radius = r;
+  moves_options.engagement.max_engagement_deg = tool.max_engagement_deg;
+  moves_options.engagement.corner_radius = options.clearing.corner_radius_ratio * r;
   ClearingStats stats;
   appendMoves(operationMoves(planned, tool, moves_options, stats), setup.frame, tool, setup_index, op);
   countEntries(stats, op);

@@ -155,7 +155,14 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
       throw InputError("roughing: tool '" + options.clearing.tool + "' is a " + toolTypeName(forced->type) +
                        ", roughing needs a flat or bull end mill");
   }
-  if (!forced && candidates.empty()) throw InputError("roughing: the tool library has no flat or bull end mill");
+  // Conventional end mills for zig-zag main passes, rest and 5-axis passes; the high-efficiency cutters for
+  // engagement clearing's main passes.
+  std::vector<const Tool*> conventional, engagement;
+  for (const Tool* t : candidates) (t->max_engagement_deg > 0 ? engagement : conventional).push_back(t);
+  const std::vector<const Tool*>& main_tools =
+      options.clearing.strategy == RoughingOptions::Clearing::Strategy::Engagement && !engagement.empty() ? engagement
+                                                                                                         : conventional;
+  if (!forced && main_tools.empty()) throw InputError("roughing: the tool library has no flat or bull end mill");
   std::unique_ptr<InProcessStock> in_process;
   if (options.stock.in_process && setups.setups.size() > 1)
     in_process = std::make_unique<InProcessStock>(part, roughingStock(part, options), options.stock.in_process_rays);
@@ -193,7 +200,7 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
     }
     const Setup& setup = setups.setups[k];
     const InProcessStock* stock = k > 0 ? in_process.get() : nullptr;  // the first setup starts from the block
-    const Tool* tool = forced ? forced : chooseRoughingTool(part, setup, candidates, options, stock);
+    const Tool* tool = forced ? forced : chooseRoughingTool(part, setup, main_tools, options, stock);
     if (!tool) continue;
     RoughingStart from;
     from.earlier = stock;
@@ -210,7 +217,7 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
     // Rest passes, each with a tool at most half the size of the one before, over what that one left.
     const Tool* previous = tool;
     for (int pass = 0; options.rest.enabled && pass < options.rest.passes; ++pass) {
-      const Tool* rest = restTool(candidates, *previous);
+      const Tool* rest = restTool(conventional, *previous);
       if (!rest) break;
       slot = pass + 1;
       RoughingStart after;
@@ -244,7 +251,7 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
     // (at most half the main tool: what the main tool could not reach upright, it rarely reaches leaning over).
     if (options.five_axis.enabled) {
       std::vector<const Tool*> tilted;
-      for (const Tool* t : candidates)
+      for (const Tool* t : conventional)
         if (restSized(*t, *tool)) tilted.push_back(t);
       RoughingOperation op = voxelRoughSetup(part, setup, k, tilted, options, left);
       if (cuts(op)) plan.operations.push_back(std::move(op));

@@ -170,6 +170,10 @@ void checkCuttingData(const Tool& tool) {
   requireNonNegative(tool, "max_stepdown", tool.max_stepdown);
   requireNonNegative(tool, "max_stepover", tool.max_stepover);
   if (tool.max_stepover > tool.diameter) fail(tool, "max_stepover", "exceeds the diameter", tool.max_stepover);
+  if (!(tool.max_engagement_deg >= 0 && tool.max_engagement_deg <= 180))
+    fail(tool, "max_engagement_deg", "must be from 0 (no limit) to 180", tool.max_engagement_deg);
+  if (tool.max_engagement_deg > 0 && tool.type != ToolType::Flat && tool.type != ToolType::Bull)
+    fail(tool, "max_engagement_deg", "is for flat and bull end mills", tool.max_engagement_deg);
 }
 
 }  // namespace

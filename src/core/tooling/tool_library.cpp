@@ -70,14 +70,16 @@ struct CuttingNumber {
 };
 const CuttingNumber kCuttingNumbers[] = {{"spindle_rpm", &Tool::spindle_rpm},   {"feed_mm_min", &Tool::feed_mm_min},
                                          {"plunge_mm_min", &Tool::plunge_mm_min}, {"max_stepdown", &Tool::max_stepdown},
-                                         {"max_stepover", &Tool::max_stepover}};
+                                         {"max_stepover", &Tool::max_stepover},
+                                         {"max_engagement_deg", &Tool::max_engagement_deg}};
 
 // ---- config/tools.yaml ----------------------------------------------------------------------------------------------
 
 const std::set<std::string> kYamlKeys = {"id",           "type",          "diameter",     "corner_radius",
                                          "point_angle_deg", "flute_length", "shank_diameter", "stickout",
                                          "holder",       "flutes",        "spindle_rpm",  "feed_mm_min",
-                                         "plunge_mm_min", "max_stepdown", "max_stepover", "material"};
+                                         "plunge_mm_min", "max_stepdown", "max_stepover", "max_engagement_deg",
+                                         "material"};
 
 std::vector<HolderStep> yamlSteps(const YAML::Node& list, const std::string& where) {
   if (!list.IsSequence()) throw InputError(where + ": a holder is a list of [diameter, length] steps");
@@ -196,6 +198,7 @@ Json toJson(const Tool& tool) {
               {"flutes", tool.flutes},
               {"material", tool.material}};
   for (const CuttingNumber& number : kCuttingNumbers) out[number.key] = tool.*number.field;
+  if (tool.max_engagement_deg == 0) out.erase("max_engagement_deg");  // a conventional end mill, as files before it
   if (tool.type == ToolType::Drill) out["point_angle_deg"] = tool.point_angle_deg;
   return out;
 }

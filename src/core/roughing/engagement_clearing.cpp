@@ -1,0 +1,323 @@
+// Constant-engagement clearing: fronts grown from the cleared ground (engagement_clearing.h has the rule and the bound).
+#include "art2part/roughing/engagement_clearing.h"
+
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+
+#include "path_writer.h"
+
+namespace art2part {
+
+namespace {
+
+using namespace clearing_detail;
+
+constexpr double kFrontArcTolerance = 0.01;  // mm: the fronts' round joins (finer buys vertices, not engagement)
+constexpr double kOnOldFront = 0.02;         // mm: a front vertex this near the ground cleared before did not move
+constexpr double kRapidInset = 0.05;         // mm inside the cleared ground where the tool may rapid down
+constexpr double kHelixLeast = 0.05;         // mm: a piece thinner than this round its deepest point gets no helix
+constexpr int kHelixSides = 24;
+constexpr int kMaxFronts = 20000;
+constexpr double kLeastCornerShare = 0.2;    // the last bounded phase's corner radius, in tool radii (at least)            // a guard: fronts move at least min_growth_mm2 each
+
+Region disc(const Point2& centre, double radius) {
+  Ring ring;
+  for (int i = 0; i < kHelixSides; ++i) {
+    const double angle = 2 * kPi * i / kHelixSides;
+    ring.push_back(centre + radius * Point2(std::cos(angle), std::sin(angle)));
+  }
+  return regionFromPolygons({ring});
+}
+
+// The point of the piece deepest inside it, found by bisecting the erosion that still leaves something, and how
+// deep it is (0 for a piece thinner than the bisection's resolution).
+std::pair<Point2, double> deepestPoint(const Region& piece) {
+  Point2 lo = Point2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const Ring& ring : regionRings(piece))
+    for (const Point2& p : ring) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  double inside = 0, outside = 0.5 * (hi - lo).minCoeff() + 1e-3;
+  Region deepest = piece;
+  for (int i = 0; i < 14 && outside - inside > 1e-3; ++i) {
+    const double d = 0.5 * (inside + outside);
+    Region eroded = offsetRegion(piece, -d, kFrontArcTolerance);
+    if (regionEmpty(eroded)) {
+      outside = d;
+    } else {
+      inside = d;
+      deepest = std::move(eroded);
+    }
+  }
+  const std::vector<Ring> rings = regionRings(deepest);
+  Point2 centre = Point2::Zero();
+  for (const Point2& p : rings.front()) centre += p / static_cast<double>(rings.front().size());
+  if (!regionContains(deepest, centre)) centre = rings.front().front();
+  return {centre, inside};
+}
+
+// A stretch of a front to cut: `path` from the ground cleared before into the new one (its first point lies on the
+// old front, unless the whole ring is new: then `closed`).
+struct Stretch {
+  Polyline path;
+  bool closed = false;
+  std::size_t next = 0;  // the next stretch along the same ring (itself when it is the ring's only one)
+  Polyline gap;          // the ring from this stretch's end to the next one's start: on the old front
+};
+
+// The stretches of `next`'s rings that moved beyond `before`, each turned so material lies on its left (a region's
+// rings have the region on their left: reversed).
+std::vector<Stretch> newStretches(const Region& next, const Region& before) {
+  const RegionLocator old(offsetRegion(before, kOnOldFront, kFrontArcTolerance));
+  std::vector<Stretch> stretches;
+  for (Ring ring : regionRings(next)) {
+    std::reverse(ring.begin(), ring.end());
+    const std::size_t n = ring.size();
+    if (n < 3) continue;
+    std::vector<bool> moved(n);
+    for (std::size_t i = 0; i < n; ++i) moved[i] = !old.contains(ring[i]);
+    std::vector<bool> edge(n);  // edge i runs from vertex i to vertex i + 1
+    std::size_t still = n;
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t j = (i + 1) % n;
+      edge[i] = moved[i] || moved[j] || !old.contains(0.5 * (ring[i] + ring[j]));
+      if (!edge[i]) still = i;
+    }
+    if (still == n) {  // the whole ring moved
+      Polyline path(ring.begin(), ring.end());
+      path.push_back(ring.front());
+      stretches.push_back({std::move(path), true, stretches.size(), {}});
+      continue;
+    }
+    // From the end of a still edge round the ring: stretches, each followed by the still stretch after it.
+    const std::size_t first = stretches.size();
+    Polyline path, gap, lead;  // lead: the still edges before the first stretch
+    for (std::size_t k = 1; k <= n; ++k) {
+      const std::size_t i = (still + k) % n;
+      if (edge[i]) {
+        if (path.empty()) {
+          (stretches.size() > first ? stretches.back().gap : lead) = std::move(gap);
+          gap.clear();
+          path.push_back(ring[i]);
+        }
+        path.push_back(ring[(i + 1) % n]);
+      } else {
+        if (!path.empty()) stretches.push_back({std::move(path), false, stretches.size() + 1, {}});
+        path.clear();
+        if (gap.empty()) gap.push_back(ring[i]);
+        gap.push_back(ring[(i + 1) % n]);
+      }
+    }
+    if (stretches.size() > first) {  // the last one runs on to the first, through the still edges at the start
+      if (!lead.empty()) gap.insert(gap.end(), lead.begin() + (gap.empty() ? 0 : 1), lead.end());
+      stretches.back().gap = std::move(gap);
+      stretches.back().next = first;
+    }
+  }
+  return stretches;
+}
+
+// The point of the region's rings nearest `p`, and the unit normal into the region at the edge it lies on.
+std::pair<Point2, Point2> nearestOnRings(const Region& region, const Point2& p) {
+  std::pair<Point2, Point2> best{p, Point2::Zero()};
+  double best_d = std::numeric_limits<double>::infinity();
+  for (const Ring& ring : regionRings(region))
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const Point2 &a = ring[i], &b = ring[(i + 1) % ring.size()];
+      const Point2 d = b - a;
+      if (d.squaredNorm() == 0) continue;
+      const double t = std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+      const Point2 q = a + t * d;
+      if ((q - p).squaredNorm() < best_d) best = {q, Point2(-d.y(), d.x()).normalized()}, best_d = (q - p).squaredNorm();
+    }
+  return best;
+}
+
+ClearingLevel lowLinks(ClearingLevel level, const ClearingOptions& options) {
+  if (!options.stay_down) {
+    level.cleared.clear();
+    level.clear_height = nullptr;
+  }
+  return level;
+}
+
+ClearingOptions withStayDown(ClearingOptions options) {
+  options.stay_down = true;
+  return options;
+}
+
+class FrontCutter {
+ public:
+  // The fronts of a level are many short stretches: they are always linked low, over this level's cleared ground
+  // or its slab (`top`, the level's own proofs); the proofs from other levels and the stock model only with
+  // options.stay_down, which also decides whether the level ends with a retract.
+  FrontCutter(const ClearingLevel& level, const ClearingOptions& options, const EngagementOptions& engagement,
+              ClearingStats& stats)
+      : level_(lowLinks(level, options)),
+        options_(options),
+        low_(withStayDown(options)),
+        engagement_(engagement),
+        stats_(stats),
+        writer_(level_, low_, stats) {}
+
+  std::vector<ClearingPoint> cut() {
+    const double r = engagement_.tool_radius;
+    const double rho = engagement_.corner_radius > 0 ? engagement_.corner_radius : 2 * r;
+    cleared_ = intersect(level_.air, level_.centre);
+    solid_ = subtract(level_.stock_reach, level_.centre);
+    seedPieces(r);
+    // Each connected piece of the material is cleared whole before the next (nearest first): fronts over the whole
+    // level would tour every piece at every front. Phases of shrinking corner radius: each keeps the bound with its
+    // own band; what the closing by one radius holds back (corners, gaps, the first rounds of a helix) the next takes.
+    for (RegionPiece& piece : regionPieces(subtract(level_.centre, cleared_))) waiting_.push_back(std::move(piece.rings));
+    while (!waiting_.empty()) {
+      const std::size_t j = nearestWaiting();
+      area_ = unite(waiting_[j], cleared_);
+      waiting_.erase(waiting_.begin() + static_cast<std::ptrdiff_t>(j));
+      for (double radius = rho; radius >= kLeastCornerShare * r; radius *= 0.5)
+        grow(engagementStepover(r, radius, engagement_.max_engagement_deg), radius, false);
+      grow(engagementStepover(r, 0, engagement_.max_engagement_deg), 0, true);
+    }
+    if (!options_.stay_down) writer_.retract();
+    return writer_.take();
+  }
+
+ private:
+  // The squared distance from the tool to the nearest vertex of the region's first ring (0 before the first move).
+  double distanceTo(const Region& region) const {
+    if (!writer_.placed() || region.empty()) return 0;
+    double d = std::numeric_limits<double>::infinity();
+    for (const ClipperLib::IntPoint& p : region.front()) d = std::min(d, (fromRegionPoint(p) - writer_.at()).squaredNorm());
+    return d;
+  }
+
+  std::size_t nearestWaiting() const {
+    std::size_t best = 0;
+    for (std::size_t j = 1; j < waiting_.size(); ++j)
+      if (distanceTo(waiting_[j]) < distanceTo(waiting_[best])) best = j;
+    return best;
+  }
+
+  // A helix at the deepest point of every piece of the centre region with no cleared ground in it.
+  void seedPieces(double r) {
+    for (const RegionPiece& piece : regionPieces(level_.centre)) {
+      if (!regionEmpty(intersect(piece.rings, cleared_))) continue;
+      const auto [centre, depth] = deepestPoint(piece.rings);
+      if (depth < kHelixLeast) continue;
+      const double radius = std::min(0.5 * r, 0.9 * depth);
+      const Region helix = disc(centre, radius);
+      std::vector<Ring> rings = regionRings(helix);
+      Polyline ring(rings.front().begin(), rings.front().end());
+      std::reverse(ring.begin(), ring.end());  // material on the left
+      std::pair<std::size_t, Point2> lap{ring.size() - 1, ring.front()};
+      if (!writer_.linkTo(ring.front(), false, 0, cleared_)) lap = writer_.enterRing(ring);
+      for (std::size_t k = 1; k <= ring.size(); ++k) writer_.feed(ring[(lap.first + k) % ring.size()]);
+      writer_.feed(lap.second);
+      ++stats_.contours;
+      cleared_ = unite(cleared_, helix);
+    }
+  }
+
+  // Fronts a apart until they stop moving. With rho > 0 the material beyond the front is closed by rho first: its
+  // concave corners, which are the front's turns round material, filled to a radius of rho (the front goes round
+  // them later, when they are shallow); gaps in it narrower than 2 rho are filled too.
+  void grow(double a, double rho, bool unbounded) {
+    for (int k = 0; k < kMaxFronts && !regionEmpty(cleared_); ++k) {
+      Region next = intersect(offsetRegion(cleared_, a, kFrontArcTolerance), area_);
+      if (rho > 0) {
+        const Region beyond = unite(subtract(level_.centre, next), solid_);
+        const Region closed = offsetRegion(offsetRegion(beyond, rho, kFrontArcTolerance), -rho, kFrontArcTolerance);
+        next = subtract(next, closed);
+      }
+      next = unite(cleared_, next);
+      if (regionArea(next) - regionArea(cleared_) < engagement_.min_growth_mm2) return;
+      reach_ = offsetRegion(cleared_, 2 * kOnOldFront, kFrontArcTolerance);
+      band_ = a;
+      cutStretches(newStretches(next, cleared_), unbounded);
+      cleared_ = intersect(simplifyRegion(next, 0.25 * kOnOldFront), level_.centre);  // fewer vertices, still inside
+    }
+  }
+
+  // The stretch nearest the tool first, then on round its ring while the way along the old front between two
+  // stretches takes less time than a hop; each stretch not reached so is entered from the cleared ground.
+  void cutStretches(const std::vector<Stretch>& stretches, bool unbounded) {
+    std::vector<bool> done(stretches.size(), false);
+    std::size_t next = stretches.size();
+    for (std::size_t n = 0; n < stretches.size(); ++n) {
+      if (next == stretches.size()) {
+        double nearest = std::numeric_limits<double>::infinity();
+        for (std::size_t i = 0; i < stretches.size(); ++i) {
+          if (done[i]) continue;
+          const double d = writer_.placed() ? (stretches[i].path.front() - writer_.at()).squaredNorm() : 0;
+          if (d < nearest) next = i, nearest = d;
+        }
+        enterAt(stretches[next].path.front());
+      }
+      done[next] = true;
+      const Stretch& stretch = stretches[next];
+      for (const Point2& p : stretch.path) writer_.feed(p);
+      if (unbounded) stats_.unbounded_mm += pathLength(stretch.path);
+      ++stats_.passes;
+      next = stretches.size();
+      if (!stretch.closed && !done[stretch.next] && walkCheaper(stretch.gap)) {
+        for (const Point2& p : stretch.gap) writer_.feed(p);
+        next = stretch.next;
+      }
+    }
+  }
+
+  // Feeding along `gap` takes no longer than a hop over its ends (up over the slab, across, down).
+  bool walkCheaper(const Polyline& gap) const {
+    const double up = level_.top + options_.safe_height - level_.z;
+    const double hop_s = 60 * (2 * up + (gap.back() - gap.front()).norm()) / options_.rapid_mm_min;
+    return 60 * pathLength(gap) / options_.feed_mm_min <= hop_s + 60 * options_.safe_height / options_.feed_mm_min;
+  }
+
+  // To the level at `start` from the ground cleared before, at the point of it nearest `start` moved kRapidInset
+  // into it (when that lies within the front's band of `start`): along the level where the way is cleared (to within the stretches' tolerance: such a link cuts at most
+  // that deep), else a hop, a rapid down the clear column and a plunge; then a feed to `start`. Where no such point
+  // is found, a hop and a plunge at `start` itself (through whatever the column holds, at the plunge rate).
+  void enterAt(const Point2& start) {
+    const auto [edge, inward] = nearestOnRings(cleared_, start);
+    const Point2 inside = edge + kRapidInset * inward;
+    const bool clear = inward.squaredNorm() > 0 && (inside - start).norm() <= band_ + 2 * kRapidInset &&
+                       regionContains(cleared_, inside);
+    const Point2 entry = clear ? inside : start;
+    if (!writer_.linkTo(entry, true, 0, reach_)) writer_.descendOverCleared(clear);
+    writer_.feed(start);
+  }
+
+  const ClearingLevel level_;
+  const ClearingOptions& options_;
+  const ClearingOptions low_;
+  const EngagementOptions& engagement_;
+  ClearingStats& stats_;
+  PathWriter writer_;
+  Region solid_;    // outside the centre region, where the disc would meet stock: material for the closing
+  Region area_;     // the piece of material being cleared, with the cleared ground
+  std::vector<Region> waiting_;  // pieces of material still to clear (connected pieces at the start)
+  double band_ = 0;  // the band the fronts of this phase take
+  Region reach_;    // cleared_ grown by the stretches' tolerance: links along the level stay in it
+  Region cleared_;  // centres whose disc meets no material left at the level: the ground cleared
+};
+
+}  // namespace
+
+double engagementStepover(double tool_radius, double corner_radius, double angle_deg) {
+  if (!(tool_radius > 0) || !(angle_deg > 0) || angle_deg > 180)
+    throw std::invalid_argument("engagementStepover: a positive radius and an angle in (0, 180] degrees");
+  const double c = std::cos(angle_deg * kPi / 180);
+  if (!(corner_radius > 0) || std::isinf(corner_radius)) return tool_radius * (1 - c);
+  const double rho = corner_radius, r = tool_radius;
+  return rho + r - std::sqrt(rho * rho + r * r + 2 * rho * r * c);
+}
+
+std::vector<ClearingPoint> clearLevelByEngagement(const ClearingLevel& level, const ClearingOptions& options,
+                                                  const EngagementOptions& engagement, ClearingStats* stats) {
+  ClearingStats local;
+  ClearingStats& counts = stats ? *stats : local;
+  if (regionEmpty(level.centre)) return {};
+  return FrontCutter(level, options, engagement, counts).cut();
+}
+
+}  // namespace art2part

@@ -1,0 +1,123 @@
+// An independent measure of radial engagement for the tests: the slab's material as a fine pixel grid, a cutter of
+// radius r swept along the moves in steps of a pixel, and at each step the arc of its leading half (ahead of the
+// direction of motion) that meets material not yet removed, sampled a pixel and a half outside its edge (inside it the
+// step before has removed everything). Nothing of the planner's
+// geometry is used: material is the stock polygon test by pixel centre, removal is the disc.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "art2part/roughing/clearing_paths.h"
+#include "art2part/roughing/region.h"
+
+namespace art2part {
+namespace test {
+
+struct EngagementFigures {
+  double cut_mm = 0;           // length of the moves at the level
+  double over_mm = 0;          // of which with the engagement above the limit asked
+  double worst_deg = 0;        // the largest engagement met
+  long material_left = 0;      // pixels of material left within reach (the cutter could have taken them)
+};
+
+class EngagementSweep {
+ public:
+  // Material: pixels whose centre lies in `stock`, over the box of `reach` (where any cutter disc may go).
+  EngagementSweep(const Region& stock, const Region& reach, double pixel) : pixel_(pixel) {
+    Point2 lo(1e18, 1e18), hi(-1e18, -1e18);
+    for (const Ring& ring : regionRings(reach))
+      for (const Point2& p : ring) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    origin_ = lo - Point2(2 * pixel, 2 * pixel);
+    nx_ = static_cast<int>((hi.x() - origin_.x()) / pixel) + 4;
+    ny_ = static_cast<int>((hi.y() - origin_.y()) / pixel) + 4;
+    material_.assign(static_cast<std::size_t>(nx_) * ny_, 0);
+    const RegionLocator in_stock(stock);
+    for (int j = 0; j < ny_; ++j)
+      for (int i = 0; i < nx_; ++i) material_[index(i, j)] = in_stock.contains(centre(i, j)) ? 1 : 0;
+  }
+
+  // Sweeps the moves at height `z` (the cutting ones, and whatever else runs at z) with a cutter of `radius`; the
+  // engagement is measured on the moves for which `measured(i)` holds (i: index of the move's end).
+  template <class Measured>
+  EngagementFigures sweep(const std::vector<ClearingPoint>& moves, double z, double radius, double limit_deg,
+                          Measured measured) {
+    EngagementFigures f;
+    for (std::size_t i = 1; i < moves.size(); ++i) {
+      if (moves[i].tip.z() > z + 1e-9 || moves[i - 1].tip.z() > z + 1e-9) {
+        if (moves[i].tip.z() <= z + 1e-9) remove(moves[i].tip.head<2>(), radius);  // a plunge's foot
+        continue;
+      }
+      const Point2 a = moves[i - 1].tip.head<2>(), b = moves[i].tip.head<2>();
+      const double length = (b - a).norm();
+      const int steps = std::max(1, static_cast<int>(std::ceil(length / pixel_)));
+      const bool judge = measured(i);
+      for (int s = 1; s <= steps; ++s) {
+        const Point2 c = a + (b - a) * (static_cast<double>(s) / steps);
+        const double angle = engagedDeg(c, (b - a) / std::max(length, 1e-12), radius);
+        if (judge) {
+          f.cut_mm += length / steps;
+          f.worst_deg = std::max(f.worst_deg, angle);
+          if (angle > limit_deg) f.over_mm += length / steps;
+        }
+        remove(c, radius);
+      }
+    }
+    return f;
+  }
+
+  // Material pixels left whose centre lies in `region`.
+  long materialIn(const Region& region) const {
+    const RegionLocator in(region);
+    long n = 0;
+    for (int j = 0; j < ny_; ++j)
+      for (int i = 0; i < nx_; ++i)
+        if (material_[index(i, j)] && in.contains(centre(i, j))) ++n;
+    return n;
+  }
+
+ private:
+  std::size_t index(int i, int j) const { return static_cast<std::size_t>(j) * nx_ + i; }
+  Point2 centre(int i, int j) const { return origin_ + pixel_ * Point2(i + 0.5, j + 0.5); }
+  bool materialAt(const Point2& p) const {
+    const int i = static_cast<int>(std::floor((p.x() - origin_.x()) / pixel_));
+    const int j = static_cast<int>(std::floor((p.y() - origin_.y()) / pixel_));
+    return i >= 0 && j >= 0 && i < nx_ && j < ny_ && material_[index(i, j)];
+  }
+
+  // Degrees of the leading half of the circle of radius r + 1.5 pixels round c that lie in material (720 samples
+  // round the whole circle).
+  double engagedDeg(const Point2& c, const Point2& direction, double radius) const {
+    constexpr int kSamples = 720;
+    const double rr = radius + 1.5 * pixel_;
+    int in = 0;
+    for (int k = 0; k < kSamples; ++k) {
+      const double t = 2 * 3.14159265358979323846 * k / kSamples;
+      const Point2 u(std::cos(t), std::sin(t));
+      if (u.dot(direction) >= 0 && materialAt(c + rr * u)) ++in;
+    }
+    return 360.0 * in / kSamples;
+  }
+
+  void remove(const Point2& c, double radius) {
+    const int j0 = std::max(0, static_cast<int>(std::floor((c.y() - radius - origin_.y()) / pixel_)));
+    const int j1 = std::min(ny_ - 1, static_cast<int>(std::ceil((c.y() + radius - origin_.y()) / pixel_)));
+    for (int j = j0; j <= j1; ++j) {
+      const double dy = centre(0, j).y() - c.y();
+      if (std::abs(dy) > radius) continue;
+      const double half = std::sqrt(radius * radius - dy * dy);
+      const int i0 = std::max(0, static_cast<int>(std::ceil((c.x() - half - origin_.x()) / pixel_ - 0.5)));
+      const int i1 = std::min(nx_ - 1, static_cast<int>(std::floor((c.x() + half - origin_.x()) / pixel_ - 0.5)));
+      for (int i = i0; i <= i1; ++i) material_[index(i, j)] = 0;
+    }
+  }
+
+  double pixel_;
+  Point2 origin_;
+  int nx_ = 0, ny_ = 0;
+  std::vector<unsigned char> material_;
+};
+
+}  // namespace test
+}  // namespace art2part

@@ -1,0 +1,152 @@
+// Constant-engagement clearing: the engagement the cutter meets, measured by an independent pixel sweep
+// (engagement_sweep.h), stays under the angle asked wherever the bound is claimed; the slab is cleared; the cuts stay
+// in the centre region.
+#include "art2part/roughing/engagement_clearing.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "engagement_sweep.h"
+
+using namespace art2part;
+using namespace art2part::test;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+Ring rectangle(double x0, double y0, double x1, double y1) { return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}; }
+
+Ring circle(const Point2& c, double r, int n = 72) {
+  Ring ring;
+  for (int i = 0; i < n; ++i) ring.push_back(c + r * Point2(std::cos(2 * kPi * i / n), std::sin(2 * kPi * i / n)));
+  return ring;
+}
+
+ClearingOptions optionsOf() {
+  ClearingOptions options;
+  options.clearance_z = 10;
+  options.safe_height = 1;
+  options.ramp_angle_deg = 3;
+  options.stay_down = true;
+  return options;
+}
+
+// A slab as roughing makes one: the tool centre anywhere its disc, grown by the allowance, misses the islands (the
+// part), up to `beyond` outside the stock; air where the disc misses the stock.
+struct Slab {
+  Region stock, islands;
+  ClearingLevel level;
+};
+
+Slab slabOf(const Region& stock, const Region& islands, double r) {
+  Slab slab{stock, islands, {}};
+  slab.level.z = -5;
+  slab.level.top = 0;
+  slab.level.centre = subtract(offsetRegion(stock, r + 0.5), offsetRegion(islands, r + 0.3));
+  slab.level.stock_reach = offsetRegion(stock, r + 0.05);
+  slab.level.air = subtract(slab.level.centre, slab.level.stock_reach);
+  return slab;
+}
+
+struct Measured {
+  EngagementFigures figures;
+  ClearingStats stats;
+  long left = 0;             // material pixels left that the cutter could reach
+  bool inside = true;        // every cut at the level lies in the centre region
+};
+
+Measured clearAndMeasure(const Slab& slab, double r, double angle_deg) {
+  EngagementOptions engagement;
+  engagement.tool_radius = r;
+  engagement.max_engagement_deg = angle_deg;
+  Measured m;
+  const std::vector<ClearingPoint> moves = clearLevelByEngagement(slab.level, optionsOf(), engagement, &m.stats);
+  const double pixel = 0.04;
+  EngagementSweep sweep(slab.stock, offsetRegion(slab.level.centre, r + 1), pixel);
+  // The limit with the measure's own error: two pixels of depth on a straight cut at the angle, seen on a circle a
+  // pixel and a half wider than the cutter.
+  const double depth = r * (1 - std::cos(angle_deg * kPi / 180));
+  const double slack = 180 / kPi * std::acos((r - depth - 2 * pixel) / (r + 1.5 * pixel)) - angle_deg;
+  m.figures = sweep.sweep(moves, slab.level.z, r, angle_deg + slack,
+                          [&](std::size_t i) { return moves[i].move == ClearingMove::Feed; });
+  // Material the cutter could reach: within r (less two pixels) of the centre region.
+  m.left = sweep.materialIn(offsetRegion(slab.level.centre, r - 2 * pixel));
+  const Region grown = offsetRegion(slab.level.centre, 0.001);
+  for (std::size_t i = 1; i < moves.size(); ++i)
+    if (moves[i].move == ClearingMove::Feed && moves[i].tip.z() == slab.level.z && moves[i - 1].tip.z() == slab.level.z)
+      m.inside = m.inside && segmentInside(grown, moves[i - 1].tip.head<2>(), moves[i].tip.head<2>());
+  return m;
+}
+
+}  // namespace
+
+TEST(EngagementStepover, StraightLimitAndTighterOnTurns) {
+  const double r = 5, angle = 40, c = std::cos(angle * kPi / 180);
+  EXPECT_NEAR(engagementStepover(r, 0, angle), r * (1 - c), 1e-12);
+  EXPECT_NEAR(engagementStepover(r, 1e9, angle), r * (1 - c), 1e-6);
+  EXPECT_NEAR(engagementStepover(r, r, angle), 2 * r * (1 - std::cos(angle * kPi / 360)), 1e-12);
+  EXPECT_LT(engagementStepover(r, r, angle), engagementStepover(r, 2 * r, angle));
+  EXPECT_LT(engagementStepover(r, 2 * r, angle), engagementStepover(r, 0, angle));
+  EXPECT_THROW(engagementStepover(0, r, angle), std::invalid_argument);
+  EXPECT_THROW(engagementStepover(r, r, 0), std::invalid_argument);
+}
+
+TEST(EngagementClearing, BlockWithIslandsIsClearedUnderTheAngle) {
+  const double r = 5;
+  const Slab slab = slabOf(regionFromPolygons({rectangle(0, 0, 80, 50)}),
+                           regionFromPolygons({circle({25, 25}, 8), rectangle(50, 15, 65, 40)}), r);
+  const Measured m = clearAndMeasure(slab, r, 40);
+  std::printf("block: %.0f mm cut, %.1f mm over the angle (worst %.0f deg), %.1f mm unbounded, %d fronts, %d hops, "
+              "%ld pixels left\n",
+              m.figures.cut_mm, m.figures.over_mm, m.figures.worst_deg, m.stats.unbounded_mm, m.stats.passes,
+              m.stats.hops, m.left);
+  EXPECT_TRUE(m.inside);
+  EXPECT_EQ(m.left, 0);
+  EXPECT_LE(m.figures.over_mm, m.stats.unbounded_mm + 0.01 * m.figures.cut_mm);
+}
+
+TEST(EngagementClearing, ClosedPocketStartsWithAHelix) {
+  const double r = 4;
+  // Stock everywhere; the centre region is a pocket: no air.
+  Slab slab;
+  slab.stock = regionFromPolygons({rectangle(-20, -20, 80, 60)});
+  slab.level.z = -5;
+  slab.level.top = 0;
+  slab.level.centre = regionFromPolygons({rectangle(10, 10, 50, 35)});
+  slab.level.stock_reach = offsetRegion(slab.stock, r + 0.05);
+  const Measured m = clearAndMeasure(slab, r, 40);
+  std::printf("pocket: %.0f mm cut, %.1f mm over the angle (worst %.0f deg), %.1f mm unbounded, %d helices, %ld left\n",
+              m.figures.cut_mm, m.figures.over_mm, m.figures.worst_deg, m.stats.unbounded_mm, m.stats.contours, m.left);
+  EXPECT_EQ(m.stats.contours, 1);
+  EXPECT_TRUE(m.inside);
+  EXPECT_EQ(m.left, 0);
+}
+
+TEST(EngagementClearing, RandomSlabsAreClearedUnderTheAngle) {
+  std::mt19937 rng(1919);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int trial = 0; trial < 4; ++trial) {
+    const double r = trial % 2 ? 3 : 5;
+    std::vector<Ring> stock{rectangle(0, 0, 50 + 30 * u(rng), 30 + 30 * u(rng))};
+    std::vector<Ring> islands;
+    const int n = 1 + trial % 3;
+    for (int k = 0; k < n; ++k) {
+      const Point2 c(10 + 40 * u(rng), 8 + 25 * u(rng));
+      if (u(rng) < 0.5)
+        islands.push_back(circle(c, 3 + 6 * u(rng), 40));
+      else
+        islands.push_back(rectangle(c.x(), c.y(), c.x() + 4 + 10 * u(rng), c.y() + 4 + 10 * u(rng)));
+    }
+    const Slab slab = slabOf(regionFromPolygons(stock), regionFromPolygons(islands), r);
+    const Measured m = clearAndMeasure(slab, r, 40);
+    std::printf("trial %d: %.0f mm cut, %.1f mm over (worst %.0f deg), %.1f mm unbounded, %ld left\n", trial,
+                m.figures.cut_mm, m.figures.over_mm, m.figures.worst_deg, m.stats.unbounded_mm, m.left);
+    EXPECT_TRUE(m.inside) << "trial " << trial;
+    EXPECT_EQ(m.left, 0) << "trial " << trial;
+    EXPECT_LE(m.figures.over_mm, m.stats.unbounded_mm + 0.01 * m.figures.cut_mm) << "trial " << trial;
+  }
+}
