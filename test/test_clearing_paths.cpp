@@ -11,19 +11,14 @@
 #include <random>
 #include <set>
 
+#include "region_shapes.h"
+
 using namespace art2part;
+using namespace art2part::test;
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-Ring rectangle(double x0, double y0, double x1, double y1) { return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}; }
-
-Ring circle(const Point2& c, double r, int n = 72) {
-  Ring ring;
-  for (int i = 0; i < n; ++i) ring.push_back(c + r * Point2(std::cos(2 * kPi * i / n), std::sin(2 * kPi * i / n)));
-  return ring;
-}
 
 Region region(const std::vector<Ring>& rings) { return regionFromPolygons(rings); }
 
