@@ -3,7 +3,8 @@
 // simulation: per operation its time (cutting, rapid, tool change), the volume it removed, material per minute, its
 // bound (that volume at its tool's library rate) and the ratio; per part the roughing time against the sum of its
 // operations' bounds and the rapid length against the cutting length (the figures: at most 1.5x and 0.3x).
-//   bench_cycle_time [PART ...] [--no-finish]   (file names in shared/parts, or "all"; default featuretype.STEP)
+//   bench_cycle_time [PART ...] [--no-finish] [--adaptive] [--stay-down]   (file names in shared/parts, or "all";
+//   default featuretype.STEP; --adaptive: constant-engagement main passes, --stay-down: low links, as the CLI's)
 #include <chrono>
 #include <cstdio>
 #include <string>
@@ -42,9 +43,11 @@ void printOperation(const PlanOperation& op, const OperationFigures& f) {
               ratioText(f.bound_ratio).c_str(), f.useless ? "  USELESS" : "");
 }
 
-void benchPart(const std::string& name, const ToolLibrary& library, const Machine& machine, bool finish) {
+void benchPart(const std::string& name, const ToolLibrary& library, const Machine& machine, bool finish,
+               const RoughingOptions::Clearing& clearing) {
   const Part part = loadPart(kParts + "/" + name);
   PlanOptions options;
+  options.roughing.clearing = clearing;
   options.finish = finish;
   options.verification.stock_margin = options.roughing.stock.margin;
   const auto start = std::chrono::steady_clock::now();
@@ -84,9 +87,12 @@ int main(int argc, char** argv) {
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   std::vector<std::string> parts;
   bool finish = true;
+  RoughingOptions::Clearing clearing;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--no-finish") finish = false;
+    else if (arg == "--adaptive") clearing.strategy = RoughingOptions::Clearing::Strategy::Engagement;
+    else if (arg == "--stay-down") clearing.stay_down = true;
     else if (arg == "all") parts.assign(std::begin(kAll), std::end(kAll));
     else parts.push_back(arg);
   }
@@ -95,6 +101,6 @@ int main(int argc, char** argv) {
   const Machine machine = loadMachine(kConfig + "/machines/vmc_3axis.yaml");
   std::printf("cycle time on %s; bound = removed volume at the tool's library rate (max_stepdown x max_stepover x "
               "feed); ratio = time / bound\n", machine.name.c_str());
-  for (const std::string& name : parts) benchPart(name, library, machine, finish);
+  for (const std::string& name : parts) benchPart(name, library, machine, finish, clearing);
   return 0;
 }
