@@ -26,6 +26,10 @@ class EngagementSweep {
  public:
   // Material: pixels whose centre lies in `stock`, over the box of `reach` (where any cutter disc may go).
   EngagementSweep(const Region& stock, const Region& reach, double pixel) : pixel_(pixel) {
+    for (int k = 0; k < kSamples; ++k) {
+      const double t = 2 * 3.14159265358979323846 * k / kSamples;
+      circle_.emplace_back(std::cos(t), std::sin(t));
+    }
     Point2 lo(1e18, 1e18), hi(-1e18, -1e18);
     for (const Ring& ring : regionRings(reach))
       for (const Point2& p : ring) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
@@ -86,17 +90,13 @@ class EngagementSweep {
     return i >= 0 && j >= 0 && i < nx_ && j < ny_ && material_[index(i, j)];
   }
 
-  // Degrees of the leading half of the circle of radius r + 1.5 pixels round c that lie in material (720 samples
-  // round the whole circle).
+  // Degrees of the leading half of the circle of radius r + 1.5 pixels round c that lie in material (kSamples round
+  // the whole circle).
   double engagedDeg(const Point2& c, const Point2& direction, double radius) const {
-    constexpr int kSamples = 720;
     const double rr = radius + 1.5 * pixel_;
     int in = 0;
-    for (int k = 0; k < kSamples; ++k) {
-      const double t = 2 * 3.14159265358979323846 * k / kSamples;
-      const Point2 u(std::cos(t), std::sin(t));
+    for (const Point2& u : circle_)
       if (u.dot(direction) >= 0 && materialAt(c + rr * u)) ++in;
-    }
     return 360.0 * in / kSamples;
   }
 
@@ -113,7 +113,9 @@ class EngagementSweep {
     }
   }
 
+  static constexpr int kSamples = 720;
   double pixel_;
+  std::vector<Point2> circle_;  // kSamples unit vectors round the circle
   Point2 origin_;
   int nx_ = 0, ny_ = 0;
   std::vector<unsigned char> material_;
