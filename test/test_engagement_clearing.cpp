@@ -119,6 +119,23 @@ TEST(EngagementClearing, ClosedPocketStartsWithAHelix) {
   EXPECT_EQ(m.left, 0);
 }
 
+// A piece of the centre region with no air and too thin for a helix (a channel 0.08 mm wide) is still cut: a lap
+// round it.
+TEST(EngagementClearing, ThinPieceWithNoAirIsCutByALap) {
+  const double r = 3;
+  Slab slab;
+  slab.stock = regionFromPolygons({rectangle(-10, -10, 40, 20)});
+  slab.level.z = -5;
+  slab.level.top = 0;
+  slab.level.centre = regionFromPolygons({rectangle(5, 4.96, 25, 5.04)});
+  slab.level.stock_reach = offsetRegion(slab.stock, r + 0.05);
+  const Measured m = clearAndMeasure(slab, r, 40);
+  EXPECT_EQ(m.stats.contours, 1);
+  EXPECT_GT(m.figures.cut_mm, 39.0);  // once round: 2 x 20 mm
+  EXPECT_TRUE(m.inside);
+  EXPECT_EQ(m.left, 0);
+}
+
 TEST(EngagementClearing, RandomSlabsAreClearedUnderTheAngle) {
   std::mt19937 rng(1919);
   std::uniform_real_distribution<double> u(0, 1);

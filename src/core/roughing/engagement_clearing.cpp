@@ -199,14 +199,15 @@ class FrontCutter {
   }
 
   // A helix at the deepest point of every piece of the centre region with no cleared ground in it.
+  // A piece too thin for one (under kHelixLeast round its deepest point) is cut by a lap round its outer ring, which
+  // sweeps all of it, and counts as cleared.
   void seedPieces(double r) {
     for (const RegionPiece& piece : regionPieces(level_.centre)) {
       if (!regionEmpty(intersect(piece.rings, cleared_))) continue;
       const auto [centre, depth] = deepestPoint(piece.rings);
-      if (depth < kHelixLeast) continue;
-      const double radius = std::min(0.5 * r, 0.9 * depth);
-      const Region helix = disc(centre, radius);
-      std::vector<Ring> rings = regionRings(helix);
+      const bool thin = depth < kHelixLeast;
+      const Region seed = thin ? piece.rings : disc(centre, std::min(0.5 * r, 0.9 * depth));
+      std::vector<Ring> rings = regionRings(seed);
       Polyline ring(rings.front().begin(), rings.front().end());
       std::reverse(ring.begin(), ring.end());  // material on the left
       std::pair<std::size_t, Point2> lap{ring.size() - 1, ring.front()};
@@ -214,7 +215,8 @@ class FrontCutter {
       for (std::size_t k = 1; k <= ring.size(); ++k) writer_.feed(ring[(lap.first + k) % ring.size()]);
       writer_.feed(lap.second);
       ++stats_.contours;
-      cleared_ = unite(cleared_, helix);
+      if (thin) stats_.unbounded_mm += pathLength(ring) + (ring.back() - ring.front()).norm();
+      cleared_ = unite(cleared_, seed);
     }
   }
 
