@@ -45,6 +45,17 @@ Slab slabOf(const Region& stock, const Region& islands, double r) {
   return slab;
 }
 
+// Stock everywhere round `centre`: a slab with no air (a pocket).
+Slab enclosedSlab(const Region& stock, const Region& centre, double r) {
+  Slab slab;
+  slab.stock = stock;
+  slab.level.z = -5;
+  slab.level.top = 0;
+  slab.level.centre = centre;
+  slab.level.stock_reach = offsetRegion(stock, r + 0.05);
+  return slab;
+}
+
 struct Measured {
   EngagementFigures figures;
   ClearingStats stats;
@@ -104,13 +115,8 @@ TEST(EngagementClearing, BlockWithIslandsIsClearedUnderTheAngle) {
 
 TEST(EngagementClearing, ClosedPocketStartsWithAHelix) {
   const double r = 4;
-  // Stock everywhere; the centre region is a pocket: no air.
-  Slab slab;
-  slab.stock = regionFromPolygons({rectangle(-20, -20, 80, 60)});
-  slab.level.z = -5;
-  slab.level.top = 0;
-  slab.level.centre = regionFromPolygons({rectangle(10, 10, 50, 35)});
-  slab.level.stock_reach = offsetRegion(slab.stock, r + 0.05);
+  const Slab slab = enclosedSlab(regionFromPolygons({rectangle(-20, -20, 80, 60)}),
+                                 regionFromPolygons({rectangle(10, 10, 50, 35)}), r);
   const Measured m = clearAndMeasure(slab, r, 40);
   std::printf("pocket: %.0f mm cut, %.1f mm over the angle (worst %.0f deg), %.1f mm unbounded, %d helices, %ld left\n",
               m.figures.cut_mm, m.figures.over_mm, m.figures.worst_deg, m.stats.unbounded_mm, m.stats.contours, m.left);
@@ -123,12 +129,8 @@ TEST(EngagementClearing, ClosedPocketStartsWithAHelix) {
 // round it.
 TEST(EngagementClearing, ThinPieceWithNoAirIsCutByALap) {
   const double r = 3;
-  Slab slab;
-  slab.stock = regionFromPolygons({rectangle(-10, -10, 40, 20)});
-  slab.level.z = -5;
-  slab.level.top = 0;
-  slab.level.centre = regionFromPolygons({rectangle(5, 4.96, 25, 5.04)});
-  slab.level.stock_reach = offsetRegion(slab.stock, r + 0.05);
+  const Slab slab = enclosedSlab(regionFromPolygons({rectangle(-10, -10, 40, 20)}),
+                                 regionFromPolygons({rectangle(5, 4.96, 25, 5.04)}), r);
   const Measured m = clearAndMeasure(slab, r, 40);
   EXPECT_EQ(m.stats.contours, 1);
   EXPECT_GT(m.figures.cut_mm, 39.0);  // once round: 2 x 20 mm
