@@ -217,13 +217,19 @@ TEST(PlanFigures, RemovedVolumePerOperationSumsToTheSimulation) {
   ASSERT_TRUE(plan.verified);
   ASSERT_FALSE(plan.operations.empty());
   double sum = 0;
-  for (const auto& [op, removed] : plan.verification.removed_by_op_mm3) {
-    EXPECT_GE(removed, 0) << "op " << op;
-    sum += removed;
+  int gouges = 0, collisions = 0;
+  for (const auto& [op, check] : plan.verification.by_op) {
+    EXPECT_GE(check.swept.removed_mm3, 0) << "op " << op;
+    sum += check.swept.removed_mm3;
+    gouges += check.gouges;
+    collisions += check.collisions;
   }
   const double removed = plan.verification.removed_volume_mm3;
   ASSERT_GT(removed, 0);
   EXPECT_NEAR(sum, removed, 1e-6 * removed);
+  EXPECT_EQ(gouges, plan.verification.gouges);
+  EXPECT_EQ(collisions, plan.verification.collisions);
+  EXPECT_EQ(plan.verification.by_op.size(), plan.operations.size()) << "every operation is checked";
 
   const Machine machine = loadMachine(kConfig + "/machines/vmc_3axis.yaml");
   const PlanFigures figures = planFigures(plan, machine);
@@ -241,7 +247,8 @@ TEST(PlanFigures, RemovedVolumePerOperationSumsToTheSimulation) {
   const nlohmann::json j = planJson(part, plan, machine);
   double ops = 0;
   for (const nlohmann::json& op : j["operations"]) {
-    ASSERT_TRUE(op.contains("removed_mm3")) << op.dump();
+    for (const char* key : {"removed_mm3", "axial_depth_mm", "deepest_level_cut_mm", "gouges", "collisions"})
+      ASSERT_TRUE(op.contains(key)) << key << " in " << op.dump();
     EXPECT_GT(op["time_s"].get<double>(), 0);
     EXPECT_NEAR(op["time_s"].get<double>(), op["time"]["cutting_s"].get<double>() + op["time"]["rapid_s"].get<double>() +
                                                  op["time"]["tool_change_s"].get<double>(), 1e-9);

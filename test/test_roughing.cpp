@@ -228,6 +228,37 @@ VerificationReport verifyRoughing(const Part& part, const RoughingPlan& roughing
   return verifyToolpath(part.mesh, part.triangle_face, wholePath(roughing), toolsOf(roughing, library), verify);
 }
 
+// Issue 19 item 4's invariant, measured on the simulated stock: the column over every cut of a level is clear (the
+// levels above took it), so an operation's level feeds cut no deeper than its step-down (RoughingOptions: the
+// tool's, the option's, a rest pass's at most rest.stepdown; never over the flutes). Stock removed higher stood
+// above the slab. Hairs shaved off walls higher up (a lower level's ring a few microns outside the one above it)
+// are allowed: at most kAboveShare of what the operation removed (featuretype at level-2 setups, zig-zag, stay-down
+// and adaptive: under 0.005 % above the step-down + a bin, though the highest hair is 7-40 mm up). `above`: each
+// operation's share, for the figures.
+constexpr double kAboveShare = 0.001;
+void expectLevelCutsWithinTheStepDown(const RoughingPlan& roughing, const VerificationReport& report,
+                                      const ToolLibrary& library, const RoughingOptions& options,
+                                      std::vector<double>* above = nullptr) {
+  for (std::size_t i = 0; i < roughing.operations.size(); ++i) {
+    const RoughingOperation& op = roughing.operations[i];
+    const Tool* tool = library.find(op.tool);
+    ASSERT_TRUE(tool != nullptr) << op.tool;
+    double stepdown = options.levels.stepdown > 0 ? options.levels.stepdown
+                                                  : (tool->max_stepdown > 0 ? tool->max_stepdown : tool->diameter / 2);
+    if (op.kind == "rest roughing") stepdown = std::min(stepdown, options.rest.stepdown);
+    stepdown = std::min(stepdown, tool->flute_length);
+    const auto check = report.by_op.find(static_cast<int>(i));
+    ASSERT_TRUE(check != report.by_op.end()) << "operation " << i;
+    const OperationSweep& swept = check->second.swept;
+    const double share = levelCutAbove(swept, stepdown + report.tolerance_mm) / std::max(swept.removed_mm3, 1e-9);
+    EXPECT_GT(levelCutAbove(swept, 0), 0) << "operation " << i << " cuts at its levels";
+    EXPECT_LE(share, kAboveShare) << "operation " << i << " (" << op.kind << ", " << op.tool << ", setup "
+                                  << op.setup << ") cut under stock standing above its slab; deepest at the move "
+                                  << "ending at row " << swept.deepest_level_cut_row;
+    if (above) above->push_back(share);
+  }
+}
+
 }  // namespace
 
 TEST(Shadow, LPartShadowIsWhatLiesAbove) {
@@ -384,6 +415,7 @@ TEST(Roughing, RestPassesCutOnlyWhereTheirStockIs) {
     for (const RoughingOperation& op : roughing.operations)
       if (op.kind == "rest roughing") out.rest_feed_mm += op.feed_mm;
     out.report = verifyRoughing(part, roughing, library);
+    expectLevelCutsWithinTheStepDown(roughing, out.report, library, options);
     return out;
   };
   const Outcome every_piece = plan(0), reaching = plan(RoughingOptions().rest.least_target_mm2);
@@ -407,7 +439,7 @@ TEST(Roughing, StayDownLinksKeepTheToolLowWithoutCollisions) {
   struct Outcome {
     double rapid_mm = 0;
     int retracts = 0, operations = 0;
-    std::vector<double> planned_mm3;
+    std::vector<double> planned_mm3, above_share;
     VerificationReport report;
   };
   auto plan = [&](bool stay_down) {
@@ -419,6 +451,7 @@ TEST(Roughing, StayDownLinksKeepTheToolLowWithoutCollisions) {
     for (const RoughingOperation& op : roughing.operations) out.rapid_mm += op.rapid_mm, out.retracts += op.retracts;
     out.operations = static_cast<int>(roughing.operations.size());
     out.report = verifyRoughing(part, roughing, library);
+    expectLevelCutsWithinTheStepDown(roughing, out.report, library, options, &out.above_share);
     return out;
   };
   const Outcome high = plan(false), low = plan(true);
@@ -434,9 +467,10 @@ TEST(Roughing, StayDownLinksKeepTheToolLowWithoutCollisions) {
   // What each operation is planned to remove bounds what it removes in the simulation (why dropping a rest pass
   // planned to remove almost nothing is sound), to within the dexel lattice's error on thin bands (3 % + 10 mm3).
   for (std::size_t i = 0; i < low.planned_mm3.size(); ++i) {
-    const auto removed = low.report.removed_by_op_mm3.find(static_cast<int>(i));
-    const double simulated = removed == low.report.removed_by_op_mm3.end() ? 0 : removed->second;
+    const auto check = low.report.by_op.find(static_cast<int>(i));
+    const double simulated = check == low.report.by_op.end() ? 0 : check->second.swept.removed_mm3;
     EXPECT_LE(simulated, 1.03 * low.planned_mm3[i] + 10) << "operation " << i;
+    std::printf("operation %zu: %.2f %% of its cut above its slab\n", i, 100 * low.above_share.at(i));
   }
 }
 
@@ -470,6 +504,7 @@ TEST(Roughing, AdaptiveMainPassesCutUnderTheirEngagementWithoutCollisions) {
       }
     }
     out.report = verifyRoughing(part, roughing, library);
+    expectLevelCutsWithinTheStepDown(roughing, out.report, library, options);
     return out;
   };
   const Outcome zigzag = plan(RoughingOptions::Clearing::Strategy::ZigZag);

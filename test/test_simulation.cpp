@@ -158,6 +158,36 @@ TEST(Simulation, BullSlotAndDrillPlungeRemoveTheAnalyticVolume) {
   EXPECT_EQ(d.gouges + d.collisions + b.gouges + b.collisions, 0);
 }
 
+// The axial depth of cut (issue 19 item 4's measure): a level feed 3 mm under the stock's top cuts 3 mm deep (the z
+// rays meet the top exactly); tilted 30 deg about x across a level feed along x, the flutes reach (3 + 3 sin 30) /
+// cos 30 = 5.196 mm up the axis (the rim on the low side meets the top); a ramp to the same depth is no level feed.
+TEST(Simulation, LevelFeedsMeasureTheirAxialDepthOfCut) {
+  const auto level = verify(pass("flat6", Vec3(5, 10, 12), Vec3(35, 10, 12)), kFlat, options(0.2, 5));
+  ASSERT_EQ(level.by_op.count(0), 1u);
+  const OperationSweep& slot = level.by_op.at(0).swept;
+  EXPECT_NEAR(slot.deepest_level_cut_mm, 3.0, 1e-6);
+  EXPECT_NEAR(slot.removed_mm3, level.removed_volume_mm3, 1e-6 * level.removed_volume_mm3);
+  // By height: the slot beyond the plunge's hole (30 x 6 x 3, the hole's half-disc ends cancel), evenly over 3 mm.
+  const double slot_mm3 = levelCutAbove(slot, 0);
+  EXPECT_NEAR(slot_mm3, 30 * 6 * 3, 0.01 * 30 * 6 * 3);
+  EXPECT_NEAR(levelCutAbove(slot, 2.0), slot_mm3 / 3, 0.02 * slot_mm3);
+  EXPECT_EQ(levelCutAbove(slot, 3.25), 0.0);
+  EXPECT_NEAR(levelCutDepth(slot, kAxialDepthShare), 3.0, kLevelCutBinMm + 1e-9);
+
+  const Vec3 axis(0, -std::sin(kPi / 6), std::cos(kPi / 6));
+  Toolpath tilted = {at("flat6", MoveKind::Rapid, 5, 10, 40, axis), at("flat6", MoveKind::Feed, 5, 10, 12, axis),
+                     at("flat6", MoveKind::Feed, 35, 10, 12, axis), at("flat6", MoveKind::Feed, 35, 10, 40, axis)};
+  const auto t = verify(tilted, kFlat, options(0.1, 5));
+  EXPECT_NEAR(t.by_op.at(0).swept.deepest_level_cut_mm, (3 + 3 * std::sin(kPi / 6)) / std::cos(kPi / 6), 0.06);
+
+  const Toolpath ramp = {at("flat6", MoveKind::Rapid, 5, 10, 40), at("flat6", MoveKind::Feed, 5, 10, 15),
+                         at("flat6", MoveKind::Feed, 35, 10, 12), at("flat6", MoveKind::Feed, 35, 10, 40)};
+  const auto r = verify(ramp, kFlat, options(0.2, 5));
+  EXPECT_GT(r.by_op.at(0).swept.removed_mm3, 0);
+  EXPECT_EQ(r.by_op.at(0).swept.deepest_level_cut_mm, 0.0);
+  EXPECT_TRUE(r.by_op.at(0).swept.level_cut_by_height_mm3.empty());
+}
+
 TEST(Simulation, DipIntoThePartIsAGougeOfItsDepth) {
   for (const Tool& tool : {kFlat, kBall}) {
     const auto r = verify(pass(tool.id, Vec3(10, 10, 9.95), Vec3(30, 10, 9.95)), tool, options(0.2, 2));

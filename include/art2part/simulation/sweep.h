@@ -69,14 +69,38 @@ struct SweepOptions {
   int threads = 0;             // 0 = the hardware's
 };
 
+constexpr double kLevelCutBinMm = 0.25;  // the height bins of OperationSweep::level_cut_by_height_mm3
+
+// What one toolpath op did to the stock in the sweep.
+struct OperationSweep {
+  // The stock its moves removed, mm^3 (Stock::volume's measure: the mean over the three families), so the ops'
+  // figures sum to the stock's volume before the sweep less after it.
+  double removed_mm3 = 0;
+  // Its level cuts: what its flutes removed during feeds that keep the tip's height along a fixed axis (all of
+  // 3-axis roughing's cutting), by height above the tip along the axis. Every point removed belongs to the tool within
+  // the sweep's deviation (tolerance / 2) of a pose on the move, whose tip is at the move's height, so heights are
+  // within tolerance / 2 of the truth. Stock removed above the step-down stood above the slab: the column over the
+  // cut was not clear. The highest point alone says little (a hair shaved off a wall the full height of the flutes
+  // counts), so the volume by height says how much of the cutting was that deep.
+  double deepest_level_cut_mm = 0;  // the highest point removed, mm (0: no level feed cut)
+  int deepest_level_cut_row = -1;   // the toolpath row ending the move that cut it (-1: none)
+  // Bin b: the stock removed at heights [b, b + 1) x kLevelCutBinMm above the tip, mm^3 (a span removed along a ray
+  // is spread evenly over the heights it spans); they sum to what its level feeds removed.
+  std::vector<double> level_cut_by_height_mm3;
+};
+
+// The stock an op's level feeds removed at least `height` above the tip (whole bins at or above it: short of the
+// truth by at most the bin that straddles it), mm^3.
+double levelCutAbove(const OperationSweep& op, double height);
+// The height under which `share` of what an op's level feeds removed lies (a bin's upper edge), mm; 0 when none.
+double levelCutDepth(const OperationSweep& op, double share);
+
 struct SweepResult {
   std::map<int, MoveFinding> findings;  // by row of the toolpath (the point the move ends at), moves at fault only
   std::int64_t poses = 0;
   double seconds = 0;
   bool cancelled = false;  // the progress sink asked to stop: the findings and the stock of the moves swept so far
-  // By toolpath op: the stock its moves removed, mm^3 (Stock::volume's measure: the mean over the three families), so
-  // the ops' figures sum to the stock's volume before the sweep less after it.
-  std::map<int, double> removed_by_op_mm3;
+  std::map<int, OperationSweep> by_op;  // by toolpath op, every op whose moves were swept
 };
 
 // Tools by id; throws InputError naming the row for a tool id that is not there. With a progress sink the threads all

@@ -68,6 +68,16 @@ struct FaceVerification {
   Vec3 deepest_gouge_point = Vec3::Zero();     // where (inside the part)
 };
 
+// The share of an op's level cutting under the height reported as its axial depth of cut (levelCutDepth): the rest
+// is hairs shaved off walls above the slab, which the highest point alone would report.
+constexpr double kAxialDepthShare = 0.99;
+
+// What the simulation found of one toolpath op.
+struct OperationCheck {
+  OperationSweep swept;            // what it removed, and how deep its level feeds cut (sweep.h)
+  int gouges = 0, collisions = 0;  // its moves among the report's gouges and collisions
+};
+
 struct VerificationReport {
   int gouges = 0;  // moves removing part material deeper than the tolerance
   double worst_gouge_mm = 0;
@@ -94,7 +104,7 @@ struct VerificationReport {
   double seconds_sweep = 0, seconds_total = 0, moves_per_second = 0;
   Box stock_box;
   double stock_volume_mm3 = 0, removed_volume_mm3 = 0, remaining_volume_mm3 = 0, part_volume_mm3 = 0;
-  std::map<int, double> removed_by_op_mm3;  // by toolpath op: the stock its moves removed (they sum to removed_volume)
+  std::map<int, OperationCheck> by_op;  // by toolpath op, every op of the path (never cut to max_listed)
   int closed_open_mesh_edges = 0;  // the part's mesh was open: its boundary chain's edges, closed as solid_closure.h says
 
   bool cancelled = false;  // the progress sink asked to stop: the findings of the moves swept so far, nothing left

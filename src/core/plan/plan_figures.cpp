@@ -56,8 +56,14 @@ PlanFigures planFigures(const PlanResult& plan, const Machine& machine) {
     (op.finishing ? figures.finishing : figures.roughing) += f.time;
     if (plan.verified) {
       f.simulated = true;
-      const auto removed = plan.verification.removed_by_op_mm3.find(op.index);
-      f.removed_mm3 = removed == plan.verification.removed_by_op_mm3.end() ? 0.0 : removed->second;
+      const auto checked = plan.verification.by_op.find(op.index);
+      if (checked != plan.verification.by_op.end()) {
+        f.removed_mm3 = checked->second.swept.removed_mm3;
+        f.axial_depth_mm = levelCutDepth(checked->second.swept, kAxialDepthShare);
+        f.deepest_level_cut_mm = checked->second.swept.deepest_level_cut_mm;
+        f.gouges = checked->second.gouges;
+        f.collisions = checked->second.collisions;
+      }
       if (f.time.motion_s() > 0) f.mm3_per_min = f.removed_mm3 / (f.time.motion_s() / 60);
       const Tool* tool = findTool(plan.tools, op.tool);
       const double rate = tool ? libraryRemovalRate(*tool) : 0.0;

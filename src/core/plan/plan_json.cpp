@@ -34,6 +34,10 @@ void addFigures(nlohmann::json& j, const OperationFigures& f) {
   j["time"] = cycleTimeJson(f.time);
   if (!f.simulated) return;
   j["removed_mm3"] = f.removed_mm3;
+  j["axial_depth_mm"] = f.axial_depth_mm;
+  j["deepest_level_cut_mm"] = f.deepest_level_cut_mm;
+  j["gouges"] = f.gouges;
+  j["collisions"] = f.collisions;
   j["material_mm3_per_min"] = f.mm3_per_min;
   j["bound_s"] = f.bound_s;
   j["bound_ratio"] = f.bound_ratio > 0 ? nlohmann::json(f.bound_ratio) : nlohmann::json(nullptr);

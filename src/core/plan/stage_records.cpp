@@ -67,12 +67,15 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(LeftoverRegion, volume_mm3, max_thickness_mm,
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(FaceCusp, face, max_mm, mean_mm, samples)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(FaceVerification, face, left_max_mm, left_mean_mm, samples, gouges,
                                    deepest_gouge_mm, deepest_gouge_point)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(OperationSweep, removed_mm3, deepest_level_cut_mm, deepest_level_cut_row,
+                                   level_cut_by_height_mm3)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(OperationCheck, swept, gouges, collisions)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(VerificationReport, gouges, worst_gouge_mm, gouge_list, collisions,
                                    worst_collision_mm, collision_list, leftover_volume_mm3, leftover_max_mm, regions,
                                    region_count, faces, face_count, face_checks, resolution_mm, tolerance_mm, spacing,
                                    dexels, moves, poses, seconds_sweep, seconds_total, moves_per_second, stock_box,
                                    stock_volume_mm3, removed_volume_mm3, remaining_volume_mm3, part_volume_mm3,
-                                   removed_by_op_mm3, closed_open_mesh_edges, cancelled)
+                                   by_op, closed_open_mesh_edges, cancelled)
 
 // A toolpath point as an array (a plan has up to millions): [op, setup, tool, move, tip, axis].
 void to_json(json& j, const CutterLocation& c) { j = {c.op, c.setup, c.tool, c.move, c.tip, c.axis}; }

@@ -76,6 +76,15 @@ std::string reportJson(const VerificationReport& r) {
   j["face_cusps"] = list(r.faces, faceJson);
   j["face_cusp_count"] = r.face_count;
   j["face_checks"] = list(r.face_checks, faceCheckJson);
+  j["operations"] = json::array();
+  for (const auto& [op, check] : r.by_op)
+    j["operations"].push_back({{"op", op},
+                               {"removed_mm3", mm(check.swept.removed_mm3)},
+                               {"axial_depth_mm", mm(levelCutDepth(check.swept, kAxialDepthShare))},
+                               {"deepest_level_cut_mm", mm(check.swept.deepest_level_cut_mm)},
+                               {"deepest_level_cut_row", check.swept.deepest_level_cut_row},
+                               {"gouges", check.gouges},
+                               {"collisions", check.collisions}});
   j["tolerance_mm"] = r.tolerance_mm;
   j["resolution_mm"] = mm(r.resolution_mm);
   j["spacing_mm"] = point(r.spacing);

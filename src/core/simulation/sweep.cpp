@@ -98,6 +98,13 @@ struct Ray {
   }
 };
 
+// The deepest level cut seen, and the row ending the run that cut it.
+struct LevelCut {
+  double mm = 0;
+  int row = -1;
+  std::vector<double> by_height_mm3;  // OperationSweep::level_cut_by_height_mm3
+};
+
 // One thread's share of the sweep: the rows it owns in every family.
 class Worker {
  public:
@@ -121,6 +128,8 @@ class Worker {
   std::int64_t poses() const { return poses_; }
   // By op, by family: the length of material removed along this worker's rays, mm.
   const std::map<int, std::array<double, 3>>& removedLength() const { return removed_length_; }
+  // By op: the deepest level cut on this worker's rays and the row it was cut on (OperationSweep).
+  const std::map<int, LevelCut>& deepestLevelCut() const { return deepest_level_cut_; }
 
  private:
   bool owns(int row) const { return (row / kRowBlock) % threads_ == thread_; }
@@ -130,6 +139,7 @@ class Worker {
     const bool rapid = end.move == MoveKind::Rapid;
     const ToolPose to{end.tip, end.axis};
     removed_here_ = &removed_length_[end.op];  // a run never spans two ops (straightRuns)
+    level_cut_ = nullptr;
     if (run.placed) {
       finding_ = MoveFinding();
       for (int axis = 0; axis < 3; ++axis) cutPose(tool, {to, 0.0, 0.0}, rapid, axis);
@@ -138,6 +148,12 @@ class Worker {
       return;
     }
     const ToolPose from{path[run.first - 1].tip, path[run.first - 1].axis};
+    if (!rapid && isLevel(from, to)) {
+      level_cut_ = &deepest_level_cut_[end.op];
+      level_row_ = run.last;
+      level_axis_ = to.axis;
+      level_height_ = to.tip.dot(to.axis);
+    }
     const double step = std::min(options_.step_fraction * stock_.lattice.minSpacing(),
                                  options_.cusp_step ? cuspStep(tool, options_.tolerance) : kInfinity);
     const double deviation = std::max(0.5 * options_.tolerance, 1e-4);
@@ -254,6 +270,7 @@ class Worker {
     subtractSpan(spans, swept, &removed_);
     if (removed_.empty()) return;
     for (const Span& removed : removed_) (*removed_here_)[r.axis] += removed.length();
+    if (level_cut_) measureLevelCut(r);
     extents_[r.axis][r.index] = extentOf(spans);
     const Span part = part_extents_[r.axis][r.index];
     if (removed_.front().lo >= part.hi || removed_.back().hi <= part.lo) return;
@@ -263,6 +280,34 @@ class Worker {
         const Span inside{std::max(removed.lo, p->lo), std::min(removed.hi, p->hi)};
         if (inside.hi > inside.lo) measureGouge(pose, r, span, inside, {p->lo, p->hi});
       }
+  }
+
+  // A feed keeping the tip at one height along a fixed axis.
+  static bool isLevel(const ToolPose& from, const ToolPose& to) {
+    constexpr double kSameAxis = 1e-9, kSameHeight = 1e-6;
+    return (from.axis - to.axis).squaredNorm() < kSameAxis && std::abs((to.tip - from.tip).dot(to.axis)) < kSameHeight;
+  }
+
+  // The highest point removed along the ray above the level (an end of a removed span: height is linear along it),
+  // and the removed spans' volume by height.
+  void measureLevelCut(const Ray& r) {
+    const double base = r.origin().dot(level_axis_) - level_height_, slope = level_axis_[r.axis];
+    const double cell = stock_.lattice.cellArea(r.axis) / 3.0;  // Stock::volume's measure
+    for (const Span& removed : removed_) {
+      const double h0 = base + slope * removed.lo, h1 = base + slope * removed.hi;
+      const double low = std::max(std::min(h0, h1), 0.0), high = std::max(std::max(h0, h1), 0.0);
+      if (high > level_cut_->mm) level_cut_->mm = high, level_cut_->row = level_row_;
+      std::vector<double>& bins = level_cut_->by_height_mm3;
+      const int first = static_cast<int>(low / kLevelCutBinMm), last = static_cast<int>(high / kLevelCutBinMm);
+      if (static_cast<int>(bins.size()) <= last) bins.resize(last + 1, 0.0);
+      if (first == last) {
+        bins[first] += removed.length() * cell;
+        continue;
+      }
+      const double per_height = removed.length() * cell / (high - low);  // the span's volume spread evenly in height
+      for (int b = first; b <= last; ++b)
+        bins[b] += per_height * (std::min(high, (b + 1) * kLevelCutBinMm) - std::max(low, b * kLevelCutBinMm));
+    }
   }
 
   // The deepest point of part material removed along [g.lo, g.hi] (inside the part's span p). Skipped when even the
@@ -298,6 +343,11 @@ class Worker {
   SpanList removed_;
   std::map<int, std::array<double, 3>> removed_length_;
   std::array<double, 3>* removed_here_ = nullptr;  // the op of the run being swept
+  std::map<int, LevelCut> deepest_level_cut_;
+  LevelCut* level_cut_ = nullptr;  // the op's deepest level cut while the run is a level feed, else null
+  int level_row_ = -1;             // the row ending that run
+  Vec3 level_axis_ = Vec3::UnitZ();
+  double level_height_ = 0;      // the run's tip height along level_axis_
 };
 
 std::vector<const ToolSolid*> toolOfEveryRow(const Toolpath& path, const std::map<std::string, ToolSolid>& tools) {
@@ -376,13 +426,42 @@ SweepResult sweepToolpath(Stock& stock, const MeshDexels& part, const PartDistan
   for (const Worker& w : workers) {
     for (const auto& [row, finding] : w.findings()) mergeFinding(result.findings[row], finding);
     for (const auto& [op, length] : w.removedLength()) {
-      double& volume = result.removed_by_op_mm3[op];
+      double& volume = result.by_op[op].removed_mm3;
       for (int axis = 0; axis < 3; ++axis) volume += length[axis] * stock.lattice.cellArea(axis) / 3.0;
+    }
+    for (const auto& [op, cut] : w.deepestLevelCut()) {
+      OperationSweep& o = result.by_op[op];
+      if (cut.mm > o.deepest_level_cut_mm) o.deepest_level_cut_mm = cut.mm, o.deepest_level_cut_row = cut.row;
+      std::vector<double>& bins = o.level_cut_by_height_mm3;
+      if (bins.size() < cut.by_height_mm3.size()) bins.resize(cut.by_height_mm3.size(), 0.0);
+      for (std::size_t b = 0; b < cut.by_height_mm3.size(); ++b) bins[b] += cut.by_height_mm3[b];
     }
   }
   result.poses = workers[0].poses();
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
+}
+
+double levelCutAbove(const OperationSweep& op, double height) {
+  double above = 0;
+  const auto& bins = op.level_cut_by_height_mm3;
+  for (std::size_t b = static_cast<std::size_t>(std::max(0.0, std::ceil(height / kLevelCutBinMm - 1e-9)));
+       b < bins.size(); ++b)
+    above += bins[b];
+  return above;
+}
+
+double levelCutDepth(const OperationSweep& op, double share) {
+  const auto& bins = op.level_cut_by_height_mm3;
+  double total = 0;
+  for (const double v : bins) total += v;
+  if (total <= 0) return 0;
+  double under = 0;
+  for (std::size_t b = 0; b < bins.size(); ++b) {
+    under += bins[b];
+    if (under >= share * total) return (b + 1) * kLevelCutBinMm;
+  }
+  return bins.size() * kLevelCutBinMm;
 }
 
 }  // namespace art2part

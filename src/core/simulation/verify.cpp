@@ -61,11 +61,13 @@ void listFindings(VerificationReport& r, const std::map<int, MoveFinding>& findi
     const CutterLocation& row = path[point];
     if (countsAsGouge(f, tolerance, allowance, triangle_face, distance)) {
       ++r.gouges;
+      ++r.by_op[row.op].gouges;
       r.worst_gouge_mm = std::max(r.worst_gouge_mm, f.gouge_mm);
       r.gouge_list.push_back({point, row.op, row.setup, row.tool, f.gouge_mm, f.gouge_point, f.gouge_tip});
     }
     if (f.collision_mm > tolerance) {
       ++r.collisions;
+      ++r.by_op[row.op].collisions;
       r.worst_collision_mm = std::max(r.worst_collision_mm, f.collision_mm);
       if (static_cast<int>(r.collision_list.size()) < max_listed)
         r.collision_list.push_back(
@@ -177,7 +179,8 @@ VerificationReport verifyToolpath(const Mesh& part_mesh, const std::vector<int>&
   r.cancelled = sweep.cancelled ||
                 !reportProgress(progress, "verification", kSweepEnd, "measuring what is left of the stock");
   r.poses = sweep.poses;
-  r.removed_by_op_mm3 = sweep.removed_by_op_mm3;
+  for (const CutterLocation& row : path) r.by_op[row.op];
+  for (const auto& [op, swept] : sweep.by_op) r.by_op[op].swept = swept;
   r.seconds_sweep = sweep.seconds;
   r.moves_per_second = r.moves / std::max(sweep.seconds, 1e-9);
   listFindings(r, sweep.findings, path, options.tolerance, options.face_allowance, triangle_face, distance,
