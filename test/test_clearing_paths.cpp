@@ -90,9 +90,11 @@ int upwardRetracts(const std::vector<ClearingPoint>& moves, double clearance_z) 
 }
 
 // A sideways rapid below the clearance plane with stay-down links: over this level's centre at the safe height or
-// above, or over a cleared level's centre at its z + safe height or above.
+// above, or over a cleared level's centre at its z + safe height or above; neither where the column over the level
+// is not known clear (ClearingLevel::column_clear).
 bool provenClear(const ClearingLevel& level, const ClearingOptions& options, const Point2& a, const Point2& b,
                  double height) {
+  if (!level.column_clear) return false;
   if (height >= level.top + options.safe_height - 1e-12 && segmentInside(level.centre, a, b)) return true;
   for (const ClearedLevel& cleared : level.cleared)
     if (height >= cleared.z + options.safe_height - 1e-12 && segmentInside(cleared.centre, a, b)) return true;
@@ -455,6 +457,27 @@ TEST(ClearingPaths, StayDownLinksHopOverClearedMaterialInsteadOfRetracting) {
   EXPECT_DOUBLE_EQ(moves.front().tip.y(), 20);
   EXPECT_LT(seconds(moves, stay), seconds(retracting, clearance));
   EXPECT_LT(clearingLength(moves, false), 0.5 * clearingLength(retracting, false));
+}
+
+// A rest pass's level: its levels above cleared only their own pieces, so skins may stand over its centre above the
+// slab (column_clear false). With stay-down links and no stock model, no sideways rapid runs below the clearance
+// plane (expectSound: provenClear holds none there): where the same level known clear hops, it feeds along the level
+// or retracts.
+TEST(ClearingPaths, RestLevelsNeverHopOverAColumnNotKnownClear) {
+  const Region island = region({rectangle(20, 10, 40, 30)});
+  ClearingLevel level = levelOf(subtract(region({rectangle(0, 0, 60, 40)}), island));
+  level.cleared.push_back({level.top, region({rectangle(-5, -5, 65, 45)})});
+  level.from = Eigen::Vector3d(50, 20, level.top);
+  ClearingOptions stay = optionsOf();
+  stay.stay_down = true;
+  ClearingStats known, unknown;
+  clearChecked(level, stay, known);
+  ASSERT_GE(known.hops, 1) << "the level hops where its column is known clear";
+  level.column_clear = false;
+  const std::vector<ClearingPoint> moves = clearChecked(level, stay, unknown);
+  EXPECT_EQ(unknown.hops, 0);
+  EXPECT_GE(unknown.retracts + unknown.level_links, known.hops);
+  EXPECT_LE(worstCoverage(level.centre, moves, level.z), 2 + 1e-6);
 }
 
 namespace {

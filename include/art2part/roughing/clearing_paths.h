@@ -41,6 +41,12 @@ struct ClearingLevel {
   Region air;            // where the tool centre may plunge straight down (its disc meets no stock in the slab)
   Region stock_reach;    // where the tool centre's disc meets stock in the slab, inside `centre` or not (air is
                          // `centre` less this); engagement clearing only (the material round the region)
+  // Above `top`, the column within the tool radius of every point of `centre` is clear: the levels above swept it
+  // (a main pass: each level's centre lies in the one above's). A rest pass's levels above cleared only the pieces
+  // where they had stock to remove, so skins thinner than that may stand over its centre (CTC-01's step-up pass: a
+  // rapid at the safe height over the centre met 0.06 mm of one): false, and links over the slab are not taken at
+  // the safe height nor over this operation's cleared levels, only where the stock model proves them clear.
+  bool column_clear = true;
   // Stay-down links only (ClearingOptions::stay_down):
   std::optional<Eigen::Vector3d> from;  // where the tool is (the last point of the level before); none: the
                                         // clearance plane. Its column must be clear from its height up.

@@ -15,12 +15,13 @@ namespace {
 using namespace clearing_detail;
 
 constexpr double kFrontArcTolerance = 0.01;  // mm: the fronts' round joins (finer buys vertices, not engagement)
-constexpr double kOnOldFront = 0.02;         // mm: a front vertex this near the ground cleared before did not move
+constexpr double kOnOldFront = 0.04;         // mm: a front vertex this near the ground cleared before did not move
 constexpr double kRapidInset = 0.05;         // mm inside the cleared ground where the tool may rapid down
 constexpr double kHelixLeast = 0.05;         // mm: a piece thinner than this round its deepest point gets no helix
 constexpr int kHelixSides = 24;
 constexpr int kMaxFronts = 20000;
-constexpr double kLeastCornerShare = 0.2;    // the last bounded phase's corner radius, in tool radii (at least)            // a guard: fronts move at least min_growth_mm2 each
+constexpr double kClosingWindowMm = 1.0;     // beyond 2 rho round a front's growth: the material its closing needs
+constexpr double kLeastCornerShare = 0.2;    // the last bounded phase's corner radius, in tool radii (at least)
 
 Region disc(const Point2& centre, double radius) {
   Ring ring;
@@ -65,10 +66,10 @@ struct Stretch {
   Polyline gap;          // the ring from this stretch's end to the next one's start: on the old front
 };
 
-// The stretches of `next`'s rings that moved beyond `before`, each turned so material lies on its left (a region's
-// rings have the region on their left: reversed).
-std::vector<Stretch> newStretches(const Region& next, const Region& before) {
-  const RegionLocator old(offsetRegion(before, kOnOldFront, kFrontArcTolerance));
+// The stretches of `next`'s rings that moved beyond `before_grown` (the ground cleared before, grown by
+// kOnOldFront), each turned so material lies on its left (a region's rings have the region on their left: reversed).
+std::vector<Stretch> newStretches(const Region& next, const Region& before_grown) {
+  const RegionLocator old(before_grown);
   std::vector<Stretch> stretches;
   for (Ring ring : regionRings(next)) {
     std::reverse(ring.begin(), ring.end());
@@ -223,20 +224,31 @@ class FrontCutter {
   // Fronts a apart until they stop moving. With rho > 0 the material beyond the front is closed by rho first: its
   // concave corners, which are the front's turns round material, filled to a radius of rho (the front goes round
   // them later, when they are shallow); gaps in it narrower than 2 rho are filled too.
+  // The closing is taken of the material within 2 rho (+ kClosingWindowMm) of the growth only: a point of the growth
+  // lies in the closing of the material when every disc of radius rho holding it meets the material, and those discs
+  // lie within 2 rho of it, so the material farther away changes nothing there (and the level's whole material, offset
+  // out and back at every front, was most of the planning time).
+  // A phase ends when a front adds less than min_growth_mm2 to the area the front before it reached: measured against
+  // the ground after simplification, the vertices simplification trims off came back every front and CTC-01's fronts
+  // crept on by a fraction of a mm^2 each, up to kMaxFronts per phase.
   void grow(double a, double rho, bool unbounded) {
+    double reached_mm2 = regionArea(cleared_);
     for (int k = 0; k < kMaxFronts && !regionEmpty(cleared_); ++k) {
       Region next = intersect(offsetRegion(cleared_, a, kFrontArcTolerance), area_);
       if (rho > 0) {
-        const Region beyond = unite(subtract(level_.centre, next), solid_);
+        const Region window = offsetRegion(subtract(next, cleared_), 2 * rho + kClosingWindowMm, kFrontArcTolerance);
+        const Region beyond = intersect(unite(subtract(level_.centre, next), solid_), window);
         const Region closed = offsetRegion(offsetRegion(beyond, rho, kFrontArcTolerance), -rho, kFrontArcTolerance);
         next = subtract(next, closed);
       }
       next = unite(cleared_, next);
-      if (regionArea(next) - regionArea(cleared_) < engagement_.min_growth_mm2) return;
-      reach_ = offsetRegion(cleared_, 2 * kOnOldFront, kFrontArcTolerance);
+      const double next_mm2 = regionArea(next);
+      if (next_mm2 - reached_mm2 < engagement_.min_growth_mm2) return;
+      reached_mm2 = next_mm2;
+      reach_ = offsetRegion(cleared_, kOnOldFront, kFrontArcTolerance);
       band_ = a;
-      cutStretches(newStretches(next, cleared_), unbounded);
-      cleared_ = intersect(simplifyRegion(next, 0.25 * kOnOldFront), level_.centre);  // fewer vertices, still inside
+      cutStretches(newStretches(next, reach_), unbounded);
+      cleared_ = intersect(simplifyRegion(next, 0.125 * kOnOldFront), level_.centre);  // fewer vertices, still inside
     }
   }
 
@@ -299,7 +311,7 @@ class FrontCutter {
   Region area_;     // the piece of material being cleared, with the cleared ground
   std::vector<Region> waiting_;  // pieces of material still to clear (connected pieces at the start)
   double band_ = 0;  // the band the fronts of this phase take
-  Region reach_;    // cleared_ grown by the stretches' tolerance: links along the level stay in it
+  Region reach_;    // cleared_ grown by kOnOldFront: what did not move, and where links along the level stay
   Region cleared_;  // centres whose disc meets no material left at the level: the ground cleared
 };
 

@@ -146,8 +146,10 @@ void clusterByCluster(const OperationLevels& levels, const Tool& tool, const Ope
         ClearingLevel clear;
         clear.z = levels.levels[i].z;
         clear.top = levels.levels[i].top;
+        clear.column_clear = levels.levels[i].column_clear;
         clear.centre = pieces;
         clear.air = intersect(levels.levels[i].air, pieces);
+        clear.stock_reach = levels.levels[i].stock_reach;  // other clusters' stock too: material to go round
         clear.cleared = cleared;
         clear.clear_height = [&link_clearance](const Point2& a, const Point2& b, double lowest, double ceiling) {
           return link_clearance.lowestClear(a, b, lowest, ceiling);

@@ -163,14 +163,14 @@ class PathWriter {
   }
 
   // The lowest height at which the straight way from `a` to `b` is proven clear: the safe height over this level's
-  // centre (clear above its top), a cleared level's z + safe height over its centre, what the stock model proves;
-  // else the clearance plane.
+  // centre (clear above its top), a cleared level's z + safe height over its centre (both only where the column is
+  // clear: ClearingLevel::column_clear), what the stock model proves; else the clearance plane.
   double hopHeight(const Point2& a, const Point2& b, bool inside_centre) const {
-    if (inside_centre) return safe_z_;
+    if (inside_centre && level_.column_clear) return safe_z_;
     double best = options_.clearance_z;
     for (const ClearedLevel& cleared : level_.cleared) {
       const double height = std::max(cleared.z + options_.safe_height, safe_z_);
-      if (height >= best) break;
+      if (height >= best || !level_.column_clear) break;
       if (segmentInside(cleared.centre, a, b)) best = height;
     }
     if (best > safe_z_ && level_.clear_height) best = std::min(best, level_.clear_height(a, b, safe_z_, best));

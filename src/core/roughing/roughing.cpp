@@ -71,6 +71,12 @@ double stepdownFor(const Tool& tool, const RoughingOptions& options, bool rest) 
   return std::min(step, tool.flute_length);
 }
 
+// mm between the levels of an operation: a step-up pass takes Clearing::step_up_share of its cutter's step-down.
+double levelStep(const Tool& tool, const RoughingOptions& options, const RoughingStart& start) {
+  if (start.step_up) return options.clearing.step_up_share * stepdownFor(tool, options, false);
+  return stepdownFor(tool, options, !start.previous.empty());
+}
+
 // The stock a previous operation left in the slab [z, top] (its slabs contain ours: our levels include theirs).
 const Region* beforeRemaining(const std::vector<SlabState>& before, double z, double top) {
   for (const SlabState& s : before)
@@ -170,12 +176,14 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
   const InProcessStock* in_process = start_from.earlier;
   op.setup = setup_index;
   op.tool = tool.id;
-  // A high-efficiency cutter clears front by front under its engagement limit; rest passes take conventional tools.
-  const bool by_engagement = !before && tool.max_engagement_deg > 0;
-  op.kind = before ? "rest roughing" : by_engagement ? "adaptive roughing" : "roughing";
+  // A high-efficiency cutter clears front by front under its engagement limit, in the main pass and its step-up pass;
+  // rest passes take conventional tools.
+  const bool by_engagement = tool.max_engagement_deg > 0 && (!before || start_from.step_up);
+  op.kind = !by_engagement ? (before ? "rest roughing" : "roughing")
+                           : (before ? "adaptive rest roughing" : "adaptive roughing");
   const SetupGeometry g = setupGeometry(part, setup, options);
   std::vector<RoughingLevel> levels =
-      roughingLevels(part, g.part, g.stock_top, g.stock_bottom, stepdownFor(tool, options, before != nullptr), options);
+      roughingLevels(part, g.part, g.stock_top, g.stock_bottom, levelStep(tool, options, start_from), options);
   if (before) {  // our slabs must each lie in one of the previous operation's slabs
     for (const SlabState& s : *before)
       if (std::none_of(levels.begin(), levels.end(), [&](const RoughingLevel& l) { return std::abs(l.z - s.z) < 1e-9; }))
@@ -244,6 +252,7 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
     ClearingLevel clear;
     clear.z = z;
     clear.top = top;
+    clear.column_clear = before == nullptr;
     const double beyond = before ? kRestCentreBeyondStockMm : kCentreBeyondStockMm;
     if (!regionEmpty(target))
       clear.centre = dropSlivers(subtract(offsetRegion(target, r + beyond), forbidden), kCentreSliverMm2);

@@ -173,7 +173,7 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
   for (int k = 0; k < n && !plan.cancelled; ++k) {
     // Each operation's reports as a share of all the setups, levels counted on: setup k spans [k/n, (k+1)/n], shared
     // out among the operations it may have (the main one, the rest passes), operation j taking the j-th part.
-    const int slots = 1 + (options.rest.enabled ? std::max(0, options.rest.passes) : 0);
+    const int slots = 2 + (options.rest.enabled ? std::max(0, options.rest.passes) : 0);  // main, step-up, rest
     int slot = 0;
     const ProgressSink within = [&](const ProgressReport& p) {
       const double share = (slot + std::clamp(p.fraction, 0.0, 1.0)) / slots;
@@ -214,15 +214,18 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
     if (!cuts(main.operation)) continue;
     planned_total += main.operation.planned_removal_mm3;
     plan.operations.push_back(std::move(main.operation));
-    // Rest passes, each with a tool at most half the size of the one before, over what that one left.
+    // A step-up pass after a main pass by engagement (the same cutter), then rest passes, each with a tool at most
+    // half the size of the one before, over what the one before left.
+    const bool step_up = tool->max_engagement_deg > 0 && options.clearing.step_up_share > 0;
     const Tool* previous = tool;
-    for (int pass = 0; options.rest.enabled && pass < options.rest.passes; ++pass) {
-      const Tool* rest = restTool(conventional, *previous);
+    for (int pass = step_up ? -1 : 0; pass < (options.rest.enabled ? options.rest.passes : 0); ++pass) {
+      const Tool* rest = pass < 0 ? tool : restTool(conventional, *previous);
       if (!rest) break;
-      slot = pass + 1;
+      slot = pass + 2;
       RoughingStart after;
       after.previous = left;
       after.earlier = stock;
+      after.step_up = pass < 0;
       RoughingPass op = roughSetup(part, setup, k, *rest, options, after, within);
       levels_done += static_cast<long>(op.operation.levels.size());
       if (op.cancelled) {
