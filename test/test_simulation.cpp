@@ -288,6 +288,9 @@ TEST(Simulation, HolderTouchingTheStockIsACollision) {
   ASSERT_GT(r.collisions, 0);
   EXPECT_EQ(r.collision_list[0].kind, CollisionKind::Holder);
   EXPECT_NEAR(r.worst_collision_mm, 2.0, 0.05);
+  EXPECT_EQ(r.by_op.at(0).collisions, r.collisions);  // the op's own figures: its moves, not rapids, the worst
+  EXPECT_EQ(r.by_op.at(0).rapid_collisions, 0);
+  EXPECT_EQ(r.by_op.at(0).worst_collision_mm, r.worst_collision_mm);
   // Flutes 8 mm long on a long shank: the shank rubs instead.
   const Tool shank_tool = endMill("shank", ToolType::Flat, 6, 8, 30);
   const auto s = verify(pass("shank", Vec3(5, -5, 10), Vec3(35, -5, 10)), shank_tool, options(0.25, 10));
@@ -302,6 +305,7 @@ TEST(Simulation, RapidThroughTheStockIsACollision) {
   ASSERT_GT(r.collisions, 0);
   EXPECT_EQ(r.collision_list[0].kind, CollisionKind::Rapid);
   EXPECT_EQ(r.collision_list[0].point, 2);
+  EXPECT_EQ(r.by_op.at(0).rapid_collisions, r.collisions);
 }
 
 TEST(Simulation, CleanPathAroundAndAboveThePartPasses) {

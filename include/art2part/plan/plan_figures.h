@@ -31,6 +31,8 @@ struct OperationFigures {
   double axial_depth_mm = 0;        // its level feeds' axial depth of cut (verify.h's kAxialDepthShare of them)
   double deepest_level_cut_mm = 0;  // the highest stock its level feeds removed above the tip (sweep.h)
   int gouges = 0, collisions = 0;   // its moves among the simulation's gouges and collisions
+  int rapid_collisions = 0;         // of those, rapids through material
+  double worst_collision_mm = 0;    // the deepest of its collisions
   double mm3_per_min = 0;   // removed_mm3 over its motion time (cutting and rapid)
   double bound_s = 0;       // removed_mm3 at its tool's library rate
   double bound_ratio = 0;   // its time over bound_s; 0 when bound_s is under kLeastBoundSeconds

@@ -76,6 +76,8 @@ constexpr double kAxialDepthShare = 0.99;
 struct OperationCheck {
   OperationSweep swept;            // what it removed, and how deep its level feeds cut (sweep.h)
   int gouges = 0, collisions = 0;  // its moves among the report's gouges and collisions
+  int rapid_collisions = 0;        // of those collisions, rapids through material (the rest: shank or holder rubbing)
+  double worst_collision_mm = 0;   // the deepest of its collisions
 };
 
 struct VerificationReport {

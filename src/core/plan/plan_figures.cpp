@@ -63,6 +63,8 @@ PlanFigures planFigures(const PlanResult& plan, const Machine& machine) {
         f.deepest_level_cut_mm = checked->second.swept.deepest_level_cut_mm;
         f.gouges = checked->second.gouges;
         f.collisions = checked->second.collisions;
+        f.rapid_collisions = checked->second.rapid_collisions;
+        f.worst_collision_mm = checked->second.worst_collision_mm;
       }
       if (f.time.motion_s() > 0) f.mm3_per_min = f.removed_mm3 / (f.time.motion_s() / 60);
       const Tool* tool = findTool(plan.tools, op.tool);

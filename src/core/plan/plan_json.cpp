@@ -38,6 +38,10 @@ void addFigures(nlohmann::json& j, const OperationFigures& f) {
   j["deepest_level_cut_mm"] = f.deepest_level_cut_mm;
   j["gouges"] = f.gouges;
   j["collisions"] = f.collisions;
+  if (f.collisions > 0) {
+    j["rapid_collisions"] = f.rapid_collisions;
+    j["worst_collision_mm"] = f.worst_collision_mm;
+  }
   j["material_mm3_per_min"] = f.mm3_per_min;
   j["bound_s"] = f.bound_s;
   j["bound_ratio"] = f.bound_ratio > 0 ? nlohmann::json(f.bound_ratio) : nlohmann::json(nullptr);

@@ -69,7 +69,7 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(FaceVerification, face, left_max_mm, left_mea
                                    deepest_gouge_mm, deepest_gouge_point)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(OperationSweep, removed_mm3, deepest_level_cut_mm, deepest_level_cut_row,
                                    level_cut_by_height_mm3)
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(OperationCheck, swept, gouges, collisions)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(OperationCheck, swept, gouges, collisions, rapid_collisions, worst_collision_mm)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(VerificationReport, gouges, worst_gouge_mm, gouge_list, collisions,
                                    worst_collision_mm, collision_list, leftover_volume_mm3, leftover_max_mm, regions,
                                    region_count, faces, face_count, face_checks, resolution_mm, tolerance_mm, spacing,

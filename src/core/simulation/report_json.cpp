@@ -84,7 +84,9 @@ std::string reportJson(const VerificationReport& r) {
                                {"deepest_level_cut_mm", mm(check.swept.deepest_level_cut_mm)},
                                {"deepest_level_cut_row", check.swept.deepest_level_cut_row},
                                {"gouges", check.gouges},
-                               {"collisions", check.collisions}});
+                               {"collisions", check.collisions},
+                               {"rapid_collisions", check.rapid_collisions},
+                               {"worst_collision_mm", mm(check.worst_collision_mm)}});
   j["tolerance_mm"] = r.tolerance_mm;
   j["resolution_mm"] = mm(r.resolution_mm);
   j["spacing_mm"] = point(r.spacing);

@@ -67,7 +67,10 @@ void listFindings(VerificationReport& r, const std::map<int, MoveFinding>& findi
     }
     if (f.collision_mm > tolerance) {
       ++r.collisions;
-      ++r.by_op[row.op].collisions;
+      OperationCheck& check = r.by_op[row.op];
+      ++check.collisions;
+      if (f.collision == CollisionKind::Rapid) ++check.rapid_collisions;
+      check.worst_collision_mm = std::max(check.worst_collision_mm, f.collision_mm);
       r.worst_collision_mm = std::max(r.worst_collision_mm, f.collision_mm);
       if (static_cast<int>(r.collision_list.size()) < max_listed)
         r.collision_list.push_back(
