@@ -168,11 +168,12 @@ class PathWriter {
   double hopHeight(const Point2& a, const Point2& b, bool inside_centre) const {
     if (inside_centre && level_.column_clear) return safe_z_;
     double best = options_.clearance_z;
-    for (const ClearedLevel& cleared : level_.cleared) {
-      const double height = std::max(cleared.z + options_.safe_height, safe_z_);
-      if (height >= best || !level_.column_clear) break;
-      if (segmentInside(cleared.centre, a, b)) best = height;
-    }
+    if (level_.column_clear)
+      for (const ClearedLevel& cleared : level_.cleared) {
+        const double height = std::max(cleared.z + options_.safe_height, safe_z_);
+        if (height >= best) break;
+        if (segmentInside(cleared.centre, a, b)) best = height;
+      }
     if (best > safe_z_ && level_.clear_height) best = std::min(best, level_.clear_height(a, b, safe_z_, best));
     return best;
   }
