@@ -3,8 +3,9 @@
 // simulation: per operation its time (cutting, rapid, tool change), the volume it removed, material per minute, its
 // bound (that volume at its tool's library rate) and the ratio; per part the roughing time against the sum of its
 // operations' bounds and the rapid length against the cutting length (the figures: at most 1.5x and 0.3x).
-//   bench_cycle_time [PART ...] [--no-finish] [--adaptive] [--stay-down]   (file names in shared/parts, or "all";
-//   default featuretype.STEP; --adaptive: constant-engagement main passes, --stay-down: low links, as the CLI's)
+//   bench_cycle_time [PART ...] [--no-finish] [--adaptive] [--no-stay-down]   (file names in shared/parts, or "all";
+//   default featuretype.STEP; --adaptive: constant-engagement main passes; --no-stay-down: every link over the
+//   clearance plane; both as the CLI's)
 #include <chrono>
 #include <cstdio>
 #include <string>
@@ -61,6 +62,12 @@ void benchPart(const std::string& name, const ToolLibrary& library, const Machin
   std::printf("  %3s %2s %-16s %-9s %8s %7s %5s %8s %8s %9s %8s %7s %6s\n", "op", "su", "kind", "tool", "cut s",
               "rapid s", "tc s", "cut m", "rapid m", "rem cm3", "cm3/min", "bound s", "ratio");
   for (std::size_t i = 0; i < plan.operations.size(); ++i) printOperation(plan.operations[i], figures.operations[i]);
+  for (const DroppedOperation& d : plan.roughing.dropped)
+    if (d.simulated)
+      std::printf("  dropped: setup %d %s %s, removed %.1f cm3 in %.0f s (planner's estimate)\n", d.setup, d.kind.c_str(),
+                  d.tool.c_str(), d.removed_mm3 / 1000, d.seconds);
+  if (plan.useless.found > 0 && !plan.useless.dropped)
+    std::printf("  %d useless roughing operations kept: %s\n", plan.useless.found, plan.useless.kept_why.c_str());
   double old_roughing = 0;  // the planners' own estimates (feed and rapid lengths at constant rates)
   for (const RoughingOperation& op : plan.roughing.operations) old_roughing += op.seconds;
   const CycleTime& r = figures.roughing;
@@ -92,7 +99,7 @@ int main(int argc, char** argv) {
     const std::string arg = argv[i];
     if (arg == "--no-finish") finish = false;
     else if (arg == "--adaptive") clearing.strategy = RoughingOptions::Clearing::Strategy::Engagement;
-    else if (arg == "--stay-down") clearing.stay_down = true;
+    else if (arg == "--no-stay-down") clearing.stay_down = false;
     else if (arg == "all") parts.assign(std::begin(kAll), std::end(kAll));
     else parts.push_back(arg);
   }

@@ -1,8 +1,10 @@
 // Cycle time (post/cycle_time.h) on hand-made paths with known answers, the machine file's change times, and the
 // plan's figures (plan_figures.h): each operation's removed volume, measured by the simulation, sums to what the
-// verification removed.
+// verification removed; a roughing operation run twice removes nothing the second time and is dropped
+// (useless_operations.h).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <string>
@@ -10,6 +12,7 @@
 #include "art2part/kinematics/machine.h"
 #include "art2part/plan/plan_figures.h"
 #include "art2part/plan/plan_json.h"
+#include "art2part/plan/useless_operations.h"
 #include "art2part/post/cycle_time.h"
 #include "art2part/post/joint_trajectory.h"
 #include "test_solids.h"
@@ -263,6 +266,89 @@ TEST(PlanFigures, RemovedVolumePerOperationSumsToTheSimulation) {
   double setups = 0;
   for (const nlohmann::json& s : j["setups"]) setups += s["time"]["total_s"].get<double>();
   EXPECT_NEAR(setups, total["total_s"].get<double>(), 1e-6);
+}
+
+// The first roughing operation run again right after itself removes nothing the second time: the simulation finds it
+// useless, and the plan without it is the plan as planned, as clean. A verification finding more without it puts the
+// plan back exactly.
+TEST(UselessOperations, ARoughingRunTwiceIsDroppedWhenThePlanWithoutItIsAsClean) {
+  const Part part = test::stepPart(test::pocketedBlock(Vec3(0, 0, 0), Vec3(60, 40, 20), 30, 20, 8, 4), "pocket");
+  const ToolLibrary library = loadToolLibrary(kConfig + "/tools.yaml");
+  PlanOptions options;
+  options.visibility.level = 2;
+  options.finish = false;
+  options.drop_useless = false;
+  PlanResult plan = planPart(part, library, options);
+  ASSERT_TRUE(plan.verified);
+  ASSERT_FALSE(plan.roughing.operations.empty());
+  EXPECT_EQ(plan.useless.found, 0) << "drop_useless false: nothing looked at";
+  const std::vector<int> useless_as_planned = uselessRoughing(plan);
+  const VerificationReport as_planned = plan.verification;
+  const Toolpath original = plan.toolpath;
+
+  const auto verifier = [&](const PlanResult& p, VerificationState& state) {
+    return verifyToolpath(part.mesh, part.triangle_face, p.toolpath, p.tools, planVerifyOptions(part, p, library, options),
+                          &state);
+  };
+  plan.roughing.operations.insert(plan.roughing.operations.begin() + 1, plan.roughing.operations.front());
+  combinePlan(plan, part, library, options);
+  plan.verification = verifier(plan, plan.simulation);
+  EXPECT_NEAR(plan.verification.leftover_volume_mm3, as_planned.leftover_volume_mm3, 1e-6 * as_planned.stock_volume_mm3);
+  const std::vector<int> useless = uselessRoughing(plan);
+  ASSERT_NE(std::find(useless.begin(), useless.end(), 1), useless.end()) << "the second run is useless";
+  EXPECT_EQ(std::find(useless.begin(), useless.end(), 0), useless.end()) << "the first run is not";
+
+  PlanResult refused = plan;
+  dropUselessRoughing(refused, part, library, options, [&](const PlanResult& p, VerificationState& state) {
+    VerificationReport report = verifier(p, state);
+    ++report.collisions;
+    return report;
+  });
+  EXPECT_EQ(refused.useless.found, static_cast<int>(useless.size()));
+  EXPECT_FALSE(refused.useless.dropped);
+  EXPECT_NE(refused.useless.kept_why.find("collisions"), std::string::npos) << refused.useless.kept_why;
+  ASSERT_EQ(refused.toolpath.size(), plan.toolpath.size()) << "put back as it was";
+  for (std::size_t i = 0; i < plan.toolpath.size(); ++i) {
+    ASSERT_EQ(refused.toolpath[i].tip, plan.toolpath[i].tip) << "row " << i;
+    ASSERT_EQ(refused.toolpath[i].op, plan.toolpath[i].op) << "row " << i;
+  }
+  EXPECT_EQ(refused.operations.size(), plan.operations.size());
+  EXPECT_EQ(refused.roughing.dropped.size(), plan.roughing.dropped.size());
+  EXPECT_EQ(refused.verification.leftover_volume_mm3, plan.verification.leftover_volume_mm3);
+  EXPECT_EQ(refused.verification.collisions, plan.verification.collisions);
+
+  const std::size_t dropped_before = plan.roughing.dropped.size();
+  dropUselessRoughing(plan, part, library, options, verifier);
+  ASSERT_TRUE(plan.useless.dropped) << plan.useless.kept_why;
+  EXPECT_TRUE(plan.useless.kept_why.empty());
+  ASSERT_EQ(plan.roughing.dropped.size(), dropped_before + useless.size());
+  const double roughing_removed = as_planned.removed_volume_mm3;
+  for (std::size_t i = dropped_before; i < plan.roughing.dropped.size(); ++i) {
+    const DroppedOperation& d = plan.roughing.dropped[i];
+    EXPECT_TRUE(d.simulated);
+    EXPECT_LT(d.removed_mm3, kUselessRemovalShare * roughing_removed);
+    EXPECT_GT(d.seconds, 0);
+    EXPECT_FALSE(d.reason.empty());
+  }
+  // Judged by the simulation of the plan as it now is: as clean as the plan as planned, and with nothing more left than
+  // what the dropped operations removed.
+  EXPECT_LE(plan.verification.gouges, as_planned.gouges);
+  EXPECT_LE(plan.verification.collisions, as_planned.collisions);
+  double dropped_removed = 0;
+  for (std::size_t i = dropped_before; i < plan.roughing.dropped.size(); ++i)
+    dropped_removed += plan.roughing.dropped[i].removed_mm3;
+  EXPECT_LE(plan.verification.leftover_volume_mm3,
+            as_planned.leftover_volume_mm3 + dropped_removed + 1e-6 * as_planned.stock_volume_mm3);
+  EXPECT_TRUE(uselessRoughing(plan).size() <= useless_as_planned.size());
+  if (useless_as_planned.empty()) {  // then only the second run went: the plan as planned, row for row
+    ASSERT_EQ(plan.toolpath.size(), original.size());
+    for (std::size_t i = 0; i < original.size(); ++i) ASSERT_EQ(plan.toolpath[i].tip, original[i].tip) << "row " << i;
+    EXPECT_EQ(plan.verification.leftover_volume_mm3, as_planned.leftover_volume_mm3);
+  }
+  const nlohmann::json j = planJson(part, plan, loadMachine(kConfig + "/machines/vmc_3axis.yaml"));
+  ASSERT_TRUE(j.contains("useless_roughing"));
+  EXPECT_TRUE(j["useless_roughing"]["dropped"].get<bool>());
+  EXPECT_TRUE(j["dropped_operations"].back().contains("removed_mm3"));
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "art2part/plan/stage_records.h"
+#include "art2part/plan/useless_operations.h"
 #include "setup_markers.h"  // visibilityFromMessage
 
 namespace art2part {
@@ -202,16 +203,27 @@ PlanResult StageChain::run(const PlanPartGoal& goal, const std::string& part_id,
   if (options.verify && !plan.toolpath.empty()) {
     start = Clock::now();
     reportProgress(progress, "verification", 0, "simulating " + std::to_string(plan.toolpath.size()) + " moves");
-    VerifyToolpaths verify;
-    verify.request.part_id = part_id;
-    verify.request.toolpath_record = toolpathRecord(plan.toolpath, plan.tools);
-    verify.request.options_record = verifyOptionsRecord(planVerifyOptions(part, plan, library, options));
-    verify.request.picture_file = picture_file;
-    verify = callService("verify_toolpaths", "verification", verify, progress, go_on);
-    plan.verification = verificationFromRecord(verify.response.record);
+    // The picture is of the plan verified last: when the plan without its useless roughing is not kept (it found more
+    // than the plan with it), the picture shows that plan's stock.
+    auto verify = [&](const PlanResult& p, VerificationState&) {
+      VerifyToolpaths call;
+      call.request.part_id = part_id;
+      call.request.toolpath_record = toolpathRecord(p.toolpath, p.tools);
+      call.request.options_record = verifyOptionsRecord(planVerifyOptions(part, p, library, options));
+      call.request.picture_file = picture_file;
+      call = callService("verify_toolpaths", "verification", call, progress, go_on);
+      return verificationFromRecord(call.response.record);
+    };
+    VerificationState unused;
+    plan.verification = verify(plan, unused);
     plan.verified = true;
-    judgeFaces(plan.verification, plan.finishing);
     timed("verification", start);
+    if (options.drop_useless) {
+      start = Clock::now();
+      dropUselessRoughing(plan, part, library, options, verify);
+      if (plan.useless.found > 0) timed("verification without useless roughing", start);
+    }
+    judgeFaces(plan.verification, plan.finishing);
   }
   plan.timings.emplace_back("total", since(all));
   return plan;

@@ -13,7 +13,7 @@
 namespace art2part {
 
 // A roughing operation removing less than this share of what the whole roughing removes is useless: plan.json flags
-// it (it stays in the plan: dropping it would change the toolpaths after it).
+// it, and planPart leaves it out when the plan without it verifies as clean (useless_operations.h).
 constexpr double kUselessRemovalShare = 0.001;
 // An operation's time against a bound under this many seconds says nothing (a ratio to nearly nothing): no ratio.
 constexpr double kLeastBoundSeconds = 1.0;

@@ -5,7 +5,9 @@
 //
 // Holes a drill or a helix makes are found first and kept out of roughing (their volume is added to the solid the
 // roughing sees), so the drill meets solid stock. The combined toolpath runs setup by setup: each setup's roughing,
-// then its finishing (each setup's points together, as the post needs), operation numbers across both.
+// then its finishing (each setup's points together, as the post needs), operation numbers across both. Roughing the
+// simulation finds removing almost nothing is then left out when the plan without it verifies as clean
+// (useless_operations.h).
 #pragma once
 
 #include <string>
@@ -30,6 +32,8 @@ struct PlanOptions {
   FinishingSetupOptions finishing_setups;  // setups added beyond the cover for faces it leaves without their finish
   bool finish = true;          // false: the plan stops after roughing (and adds no setup for finishing)
   bool verify = true;          // simulate the whole path (verification.resolution 0: max(0.4, automatic, diagonal/300))
+  bool drop_useless = true;    // with verify: roughing operations the simulation finds removing almost nothing are
+                               // left out when the plan without them verifies as clean (useless_operations.h)
   VerifyOptions verification;
 };
 
@@ -45,6 +49,13 @@ struct PlanOperation {
   std::size_t first_point = 0, points = 0;  // rows of the combined toolpath
 };
 
+// What became of the roughing operations the simulation found removing almost nothing (useless_operations.h).
+struct UselessRoughing {
+  int found = 0;           // roughing operations under kUselessRemovalShare of the roughing's volume
+  bool dropped = false;    // left out (RoughingPlan::dropped lists them): the plan without them verified as clean
+  std::string kept_why;    // found but kept: why (the simulation without them, or the verification was cancelled)
+};
+
 struct PlanResult {
   VisibilityResult visibility;
   SetupPlan setups;
@@ -58,6 +69,7 @@ struct PlanResult {
   bool verified = false;
   VerificationReport verification;
   VerificationState simulation;           // the simulated stock, for pictures of what is left
+  UselessRoughing useless;                // roughing the simulation found useless, and whether it was dropped
   std::vector<std::pair<std::string, double>> timings;  // stage, seconds, in order
   bool cancelled = false;                 // the progress sink asked to stop: the stages finished so far are kept
 };

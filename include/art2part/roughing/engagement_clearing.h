@@ -34,6 +34,12 @@
 
 namespace art2part {
 
+// How far short of the centre region's boundary the ground the fronts cut may stop: a front vertex within 0.04 mm of
+// the ground cleared before counts as unmoved and is not cut, fronts are simplified, and a phase ends when its front
+// adds under min_growth_mm2. What the proofs of a level cut by engagement take off its centre region (the discs it
+// swept, the columns it cleared for links: roughing.cpp, operation_moves.cpp); measured shortfalls stay under 0.11 mm.
+constexpr double kEngagementReachShortfallMm = 0.2;
+
 struct EngagementOptions {
   double tool_radius = 5;           // mm: the cutter's radius
   double max_engagement_deg = 40;   // the arc of the cutter's edge in material, at most, where the bound holds

@@ -181,11 +181,21 @@ nlohmann::json planJson(const Part& part, const PlanResult& plan, const Machine&
     addFigures(op, figures.operations[i]);
     j["operations"].push_back(op);
   }
-  // Rest passes planned and left out because they would remove almost nothing: one line each.
+  // Operations planned and left out because they would remove, or in the simulation removed, almost nothing.
   j["dropped_operations"] = nlohmann::json::array();
-  for (const DroppedOperation& d : plan.roughing.dropped)
-    j["dropped_operations"].push_back({{"setup", d.setup}, {"kind", d.kind}, {"tool", d.tool},
-                                       {"planned_removal_mm3", d.planned_removal_mm3}, {"reason", d.reason}});
+  for (const DroppedOperation& d : plan.roughing.dropped) {
+    nlohmann::json op = {{"setup", d.setup}, {"kind", d.kind}, {"tool", d.tool},
+                         {"planned_removal_mm3", d.planned_removal_mm3}, {"reason", d.reason}};
+    if (d.simulated) {
+      op["removed_mm3"] = d.removed_mm3;
+      op["seconds"] = d.seconds;
+    }
+    j["dropped_operations"].push_back(op);
+  }
+  if (plan.useless.found > 0) {
+    j["useless_roughing"] = {{"found", plan.useless.found}, {"dropped", plan.useless.dropped}};
+    if (!plan.useless.kept_why.empty()) j["useless_roughing"]["kept_why"] = plan.useless.kept_why;
+  }
   j["roughing_region_failures"] = plan.roughing.region_failures;
   j["roughing_direct_shadow_levels"] = plan.roughing.direct_levels;
 

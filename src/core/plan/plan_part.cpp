@@ -8,6 +8,8 @@
 
 #include <Eigen/Geometry>
 
+#include "art2part/plan/useless_operations.h"
+
 namespace art2part {
 
 namespace {
@@ -301,8 +303,17 @@ PlanResult planPart(const Part& part, const ToolLibrary& library, const PlanOpti
                                     planVerifyOptions(part, r, library, options), &r.simulation, progress);
     r.cancelled = r.verification.cancelled;
     r.verified = !r.cancelled;
-    judgeFaces(r.verification, r.finishing);
     timed("verification", start);
+    if (r.verified && options.drop_useless) {
+      start = Clock::now();
+      dropUselessRoughing(r, part, library, options, [&](const PlanResult& p, VerificationState& state) {
+        stage("verification", 0, "simulating again without the roughing that removes almost nothing");
+        return verifyToolpath(part.mesh, part.triangle_face, p.toolpath, p.tools,
+                              planVerifyOptions(part, p, library, options), &state, progress);
+      });
+      if (r.useless.found > 0) timed("verification without useless roughing", start);
+    }
+    judgeFaces(r.verification, r.finishing);
   }
   r.timings.emplace_back("total", secondsSince(all));
   return r;

@@ -90,7 +90,8 @@ void from_json(const json& j, CutterLocation& c) {
 
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(RoughingOperation, setup, kind, tool, path, levels, feed_mm, rapid_mm, seconds, ramps,
                                    plunges, retracts, plan_seconds, direct_levels, planned_removal_mm3)
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(DroppedOperation, setup, kind, tool, planned_removal_mm3, reason)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(DroppedOperation, setup, kind, tool, planned_removal_mm3, simulated, removed_mm3,
+                                   seconds, reason)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(RoughingPlan, operations, stock_left, dropped, seconds, contours,
                                    closed_open_mesh_edges, region_failures, direct_levels, cancelled)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(RoughingStage, holes, hole_methods, roughing, seconds_holes)

@@ -69,9 +69,17 @@ class MoveWriter {
   std::vector<ClearingPoint> moves_;
 };
 
-void remember(std::vector<ClearedLevel>& cleared, double z, const Region& centre) {
+// How far the level's proofs keep inside its centre region: engagement fronts may stop short of it.
+double reachShortfall(const OperationMovesOptions& options) {
+  return options.by_engagement ? kEngagementReachShortfallMm : 0.0;
+}
+
+// A level cut, for the links of the levels after it: where its centres went, `shortfall` inside its centre region.
+void remember(std::vector<ClearedLevel>& cleared, double z, const Region& centre, double shortfall) {
   if (regionEmpty(centre)) return;
-  cleared.insert(cleared.begin(), {z, centre});
+  Region reached = shortfall > 0 ? offsetRegion(centre, -shortfall) : centre;
+  if (regionEmpty(reached)) return;
+  cleared.insert(cleared.begin(), {z, std::move(reached)});
   if (cleared.size() > kLinkLevels) cleared.pop_back();
 }
 
@@ -88,7 +96,7 @@ void levelByLevel(const OperationLevels& levels, const Tool& tool, const Operati
     };
     writer.level(std::move(clear));
     if (i < levels.slabs.size()) link_clearance.addSlab(levels.slabs[i], levels.swept[i]);
-    remember(cleared, levels.levels[i].z, levels.levels[i].centre);
+    remember(cleared, levels.levels[i].z, levels.levels[i].centre, reachShortfall(options));
   }
 }
 
@@ -133,7 +141,8 @@ void clusterByCluster(const OperationLevels& levels, const Tool& tool, const Ope
       pieceClusters(levels.levels, bodyReach(tool, levels) + options.holder_margin + r);
   std::vector<std::vector<Region>> sweeps(clusters.size());  // per cluster and level: what it takes there, at most
   for (std::size_t c = 0; c < clusters.size(); ++c)
-    for (const Region& pieces : clusters[c]) sweeps[c].push_back(pieces.empty() ? Region{} : offsetRegion(pieces, r));
+    for (const Region& pieces : clusters[c])
+      sweeps[c].push_back(pieces.empty() ? Region{} : offsetRegion(pieces, r - reachShortfall(options)));
   std::vector<bool> done(clusters.size(), false);
   for (std::size_t n = 0; n < clusters.size(); ++n) {
     const std::size_t next = nearestCluster(clusters, done, writer);
@@ -155,7 +164,7 @@ void clusterByCluster(const OperationLevels& levels, const Tool& tool, const Ope
           return link_clearance.lowestClear(a, b, lowest, ceiling);
         };
         writer.level(std::move(clear));
-        remember(cleared, levels.levels[i].z, pieces);
+        remember(cleared, levels.levels[i].z, pieces, reachShortfall(options));
       }
       if (i >= levels.slabs.size()) continue;
       SlabState slab = levels.slabs[i];

@@ -274,16 +274,28 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
     // What the tool can take: its whole disc round every centre point, over the slab (links, ramps and feeds stay in
     // the centre region at or above the level).
     Region swept = regionEmpty(clear.centre) ? Region{} : offsetRegion(clear.centre, r);
+    // The links' proofs (link_clearance.h): engagement fronts may stop short of their centre region by
+    // kEngagementReachShortfallMm, which the slabs (the rest passes' stock) do not record, the band being no rest
+    // pass's to clear. So in a setup roughed by engagement the proofs' slabs keep that band: round this pass's own
+    // discs when it is by engagement, round the stock the passes before it left when it follows one.
+    if (by_engagement || (before && options.clearing.strategy == RoughingOptions::Clearing::Strategy::Engagement)) {
+      const Region link_stock = before ? offsetRegion(stock, kEngagementReachShortfallMm) : stock;
+      const double reach = by_engagement ? r - kEngagementReachShortfallMm : r;
+      Region reached = regionEmpty(clear.centre) ? Region{} : offsetRegion(clear.centre, reach);
+      planned.slabs.push_back({z, top, subtract(link_stock, reached)});
+      planned.swept.push_back(std::move(reached));
+    } else {
+      planned.slabs.push_back(slab);
+      planned.swept.push_back(swept);
+    }
     op.planned_removal_mm3 += regionArea(intersect(stock, swept)) * (top - z);
     level.remaining_mm2 = regionArea(slab.remaining);
     level.rings = static_cast<int>(clear.centre.size());
     slabs.push_back(std::move(slab));
     left_above.push_back({top, &slabs.back().remaining});
     planned.levels.push_back(std::move(clear));
-    planned.swept.push_back(std::move(swept));
     top = z;
   }
-  planned.slabs = slabs;
   OperationMovesOptions moves_options;
   moves_options.clearing = clearing;
   moves_options.holder_margin = options.clearing.holder_margin;

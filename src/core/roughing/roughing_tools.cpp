@@ -33,7 +33,13 @@ DroppedOperation droppedPass(const RoughingOperation& op, double share, double p
   char line[200];
   std::snprintf(line, sizeof line, "planned to remove %.1f mm3, under %.2g %% of the %.0f mm3 planned before it",
                 op.planned_removal_mm3, 100 * share, planned_total);
-  return {op.setup, op.kind, op.tool, op.planned_removal_mm3, line};
+  DroppedOperation dropped;
+  dropped.setup = op.setup;
+  dropped.kind = op.kind;
+  dropped.tool = op.tool;
+  dropped.planned_removal_mm3 = op.planned_removal_mm3;
+  dropped.reason = line;
+  return dropped;
 }
 
 // The tool choice measures each candidate on kChoiceLevels levels evenly down the stock, against shadows every
