@@ -136,6 +136,8 @@ struct DroppedOperation {
   double seconds = 0;              // its estimated time, saved
   std::string reason;              // one line for plan.json
 };
+// The operation's setup, kind, tool and planned removal, left out for `reason`.
+DroppedOperation droppedOperation(const RoughingOperation& op, std::string reason);
 
 // The stock left in one slab [z, top] of a setup frame (part section included), projected along the direction.
 struct SlabState {

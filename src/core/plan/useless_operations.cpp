@@ -38,17 +38,13 @@ std::string format(const char* pattern, double a, double b, double c) {
 }
 
 DroppedOperation droppedBySimulation(const RoughingOperation& op, double removed, double roughing_removed) {
-  DroppedOperation d;
-  d.setup = op.setup;
-  d.kind = op.kind;
-  d.tool = op.tool;
-  d.planned_removal_mm3 = op.planned_removal_mm3;
+  DroppedOperation d = droppedOperation(
+      op, format("the simulation found it removing %.0f mm3, %.3f%% of the %.0f mm3 the roughing removes: left out, "
+                 "the plan verified again without it",
+                 removed, 100 * removed / roughing_removed, roughing_removed));
   d.simulated = true;
   d.removed_mm3 = removed;
   d.seconds = op.seconds;
-  d.reason = format("the simulation found it removing %.0f mm3, %.3f%% of the %.0f mm3 the roughing removes: left out, "
-                    "the plan verified again without it",
-                    removed, 100 * removed / roughing_removed, roughing_removed);
   return d;
 }
 

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <utility>
 
 #include "art2part/geometry/solid_closure.h"
 #include "art2part/roughing/forbidden_region.h"
@@ -33,13 +34,7 @@ DroppedOperation droppedPass(const RoughingOperation& op, double share, double p
   char line[200];
   std::snprintf(line, sizeof line, "planned to remove %.1f mm3, under %.2g %% of the %.0f mm3 planned before it",
                 op.planned_removal_mm3, 100 * share, planned_total);
-  DroppedOperation dropped;
-  dropped.setup = op.setup;
-  dropped.kind = op.kind;
-  dropped.tool = op.tool;
-  dropped.planned_removal_mm3 = op.planned_removal_mm3;
-  dropped.reason = line;
-  return dropped;
+  return droppedOperation(op, line);
 }
 
 // The tool choice measures each candidate on kChoiceLevels levels evenly down the stock, against shadows every
@@ -64,6 +59,16 @@ double sweptArea(const Tool& tool, const std::vector<double>& zs, const ShadowSt
 }
 
 }  // namespace
+
+DroppedOperation droppedOperation(const RoughingOperation& op, std::string reason) {
+  DroppedOperation dropped;
+  dropped.setup = op.setup;
+  dropped.kind = op.kind;
+  dropped.tool = op.tool;
+  dropped.planned_removal_mm3 = op.planned_removal_mm3;
+  dropped.reason = std::move(reason);
+  return dropped;
+}
 
 const Tool* chooseRoughingTool(const Part& part, const Setup& setup, const std::vector<const Tool*>& candidates,
                                const RoughingOptions& options, const InProcessStock* in_process) {
