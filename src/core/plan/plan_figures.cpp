@@ -1,7 +1,10 @@
 // A plan's cycle time and each operation's removal against its bound (plan_figures.h).
 #include "art2part/plan/plan_figures.h"
 
+#include <algorithm>
 #include <cstdio>
+
+#include "art2part/plan/useless_operations.h"
 
 namespace art2part {
 
@@ -78,9 +81,11 @@ PlanFigures planFigures(const PlanResult& plan, const Machine& machine) {
     }
     figures.operations.push_back(f);
   }
-  for (OperationFigures& f : figures.operations) {
-    if (!f.simulated || f.finishing || figures.roughing_removed_mm3 <= 0) continue;
-    if (f.removed_mm3 >= kUselessRemovalShare * figures.roughing_removed_mm3) continue;
+  const std::vector<int> useless = uselessRoughing(plan);  // sorted sources, the rule dropUselessRoughing applies
+  for (std::size_t i = 0; i < plan.operations.size(); ++i) {
+    const PlanOperation& op = plan.operations[i];
+    if (op.finishing || !std::binary_search(useless.begin(), useless.end(), op.source)) continue;
+    OperationFigures& f = figures.operations[i];
     f.useless = true;
     f.useless_reason = uselessReason(f.removed_mm3, figures.roughing_removed_mm3);
   }

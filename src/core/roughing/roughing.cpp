@@ -280,8 +280,9 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
     // discs when it is by engagement, round the stock the passes before it left when it follows one.
     if (by_engagement || (before && options.clearing.strategy == RoughingOptions::Clearing::Strategy::Engagement)) {
       const Region link_stock = before ? offsetRegion(stock, kEngagementReachShortfallMm) : stock;
-      const double reach = by_engagement ? r - kEngagementReachShortfallMm : r;
-      Region reached = regionEmpty(clear.centre) ? Region{} : offsetRegion(clear.centre, reach);
+      Region reached = !by_engagement || regionEmpty(clear.centre)
+                           ? swept
+                           : offsetRegion(clear.centre, r - kEngagementReachShortfallMm);
       planned.slabs.push_back({z, top, subtract(link_stock, reached)});
       planned.swept.push_back(std::move(reached));
     } else {
