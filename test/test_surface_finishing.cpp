@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <random>
 
 #include <BRepAlgoAPI_Cut.hxx>
@@ -15,6 +16,7 @@
 
 #include "art2part/finishing/drop_cutter.h"
 #include "art2part/finishing/surface_finishing.h"
+#include "art2part/roughing/shadow.h"
 #include "art2part/simulation/tool_solid.h"
 #include "art2part/simulation/verify.h"
 #include "test_meshes.h"
@@ -502,6 +504,77 @@ TEST(SurfaceFinishing, FiveAxisTiltsWhereTheThreeAxisHolderCollides) {
   std::printf("the 5-axis centres with the axis upright (%zu poses): %d collisions (worst %.2f mm)\n", upright.size(),
               report.collisions, report.worst_collision_mm);
   EXPECT_GT(report.collisions, 0);
+}
+
+namespace {
+
+// Roughing's slabs (the setup frame's) of a stock made of `part_section(z)` (the part's section at the slab's
+// bottom, grown by the allowance) and a tower of stock over the box [lo, hi] no roughing tool took: 10 mm slabs from
+// the tower's top down to `bottom`.
+std::vector<SlabState> slabsWithTower(const SetupFrame& frame, const Vec3& lo, const Vec3& hi, double bottom,
+                                      const std::function<double(double)>& section_radius) {
+  auto ring = [&](const std::vector<Vec3>& points) {
+    Ring out;
+    for (const Vec3& p : toFrame(points, frame)) out.push_back(Point2(p.x(), p.y()));
+    return out;
+  };
+  std::vector<SlabState> slabs;
+  const double z0 = toFrame({Vec3::Zero()}, frame)[0].z();  // the frame's z of the part frame's origin
+  for (double top = hi.z(); top > bottom + 1e-9; top -= 10) {
+    const double z = std::max(bottom, top - 10);
+    std::vector<Ring> rings{ring({Vec3(lo.x(), lo.y(), z), Vec3(hi.x(), lo.y(), z), Vec3(hi.x(), hi.y(), z),
+                                  Vec3(lo.x(), hi.y(), z)})};
+    const double radius = section_radius(z);
+    if (radius > 0) {
+      std::vector<Vec3> disc;
+      for (int k = 0; k < 90; ++k)
+        disc.push_back(Vec3(radius * std::cos(k * M_PI / 45), radius * std::sin(k * M_PI / 45), z));
+      rings.push_back(ring(disc));
+    }
+    slabs.push_back({z + z0, top + z0, regionFromPolygons(rings)});
+  }
+  return slabs;
+}
+
+}  // namespace
+
+TEST(SurfaceFinishing, ShankAndHolderKeepClearOfTheStockRoughingLeft) {
+  // The dome of the first test, and beside it a tower of stock 30 mm tall that roughing left (a wall its tools could
+  // not reach, say): finishing that knows only the part runs its shank into the tower; given roughing's slabs it
+  // leaves out what the shank cannot reach and cuts the rest, and the simulation finds no collision.
+  const Part part = stepPart(dome(0), "dome");
+  const Vec3 lo(16.5, -20.3, 10), hi(20.3, 20.3, 40);
+  const TopoDS_Shape tower = BRepPrimAPI_MakeBox(gp_Pnt(lo.x(), lo.y(), 9), gp_Pnt(hi.x(), hi.y(), hi.z())).Shape();
+  const Part stock = stepPart(BRepAlgoAPI_Fuse(dome(0.3), tower).Shape(), "dome_tower_stock");
+  const std::vector<int> spheres = facesOfType(part, SurfaceType::Sphere);
+  ASSERT_EQ(spheres.size(), 1u);
+  const Tool tool = ball6();
+  const SetupFrame frame = setupFrame(part, Vec3::UnitZ());
+  const std::vector<SlabState> slabs = slabsWithTower(frame, lo, hi, 10, [](double z) {
+    return z < 25 ? std::sqrt(15.0 * 15.0 - (z - 10) * (z - 10)) + 0.3 : 0.0;
+  });
+  SurfaceFinishingOptions options;
+  const SurfaceFinishingResult blind = finishSurfaces3Axis(part, spheres, frame, tool, 0, options);
+  const SurfaceFinishingResult aware = finishSurfaces3Axis(part, spheres, frame, tool, 0, options, slabs);
+  const double area = part.faces[spheres[0]].area;
+  VerifyOptions vo;
+  vo.stock_mesh = &stock.mesh;
+  vo.resolution = 0.25;  // the shank meets the tower by millimetres
+  for (const auto* r : {&blind, &aware}) {
+    const VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, r->path, {tool}, vo);
+    std::printf("%s: planned %.0f of %.0f mm2, skipped %.0f; verified: %d gouges, %d collisions (worst %.2f mm)\n",
+                r == &blind ? "part only" : "with the stock left", r->planned_area_mm2, area, r->skipped_area_mm2,
+                report.gouges, report.collisions, report.worst_collision_mm);
+    EXPECT_EQ(report.gouges, 0);
+    if (r == &blind)
+      EXPECT_GT(report.collisions, 0);  // the case is real
+    else
+      EXPECT_EQ(report.collisions, 0);
+  }
+  EXPECT_GT(aware.skipped_area_mm2, 20);
+  // The dome away from the tower is still finished: its far half at least.
+  EXPECT_GT(aware.planned_area_mm2, 0.5 * blind.planned_area_mm2);
+  EXPECT_LT(aware.planned_area_mm2, blind.planned_area_mm2);
 }
 
 namespace {

@@ -43,12 +43,15 @@
 // Shank and holder: kept clear of the part grown by `skin` (what roughing left: its allowance and stairs) plus the
 // holder margin, by a height map of the part along the tool direction (a cylinder of radius r dropped at (x, y) lands
 // at the highest part point within r: the body zone starting h above the tip collides iff that is above tip + h; the
-// map's nodes take r grown by the node spacing so the nearest node answers for any point). Points where they cannot
-// clear are left out and their area reported.
+// map's nodes take r grown by the node spacing so the nearest node answers for any point), and of the stock roughing
+// left beyond the skin (its slabs: a zone over a slab's region grown by the zone's radius clears when its bottom is
+// above the slab's top, the slab's material being anywhere up to its top). Points where they cannot clear are left
+// out and their area reported: a finishing tool is no roughing tool, and its holder rubbing the stairs a coarse
+// roughing left is a collision, not a cut.
 //
 // Linking: consecutive passes are joined along the CL surface (a feed, every point dropped) when the link is at most
 // feed_link_mm long and stays in the region with the body clear (zig-zag rasters, waterline levels stepping down);
-// otherwise the tool lifts at feed until it clears the part grown by the skin, and then either moves over at a safe
+// otherwise the tool lifts at feed until it clears the part grown by the skin and the stock left, and then either moves over at a safe
 // height (the highest of that clearance along the way, plus link_margin) when the next pass starts within
 // short_link_mm, or rapids at the clearance height.
 #pragma once
@@ -57,6 +60,7 @@
 #include <vector>
 
 #include "art2part/geometry/part.h"
+#include "art2part/roughing/roughing.h"
 #include "art2part/setup/setup_plan.h"
 #include "art2part/tooling/tool.h"
 #include "art2part/tooling/toolpath.h"
@@ -108,10 +112,13 @@ struct SurfaceFinishingResult {
 };
 
 // 3-axis finishing of `faces` (ids into part.faces) of a closed part from `frame.z` with a ball, bull or flat end mill.
-// Throws InputError for a tool that is not an end mill, an empty face list, a face id out of range or options out of
-// range.
+// `stock_left`: what roughing left in `frame` (RoughingPlan::stock_left of the setup when the frame is the setup's),
+// slabs top down; the shank, holder and links keep clear of it beyond the skin as of the part. Empty: nothing known
+// beyond the skin. Throws InputError for a tool that is not an end mill, an empty face list, a face id out of range or
+// options out of range.
 SurfaceFinishingResult finishSurfaces3Axis(const Part& part, const std::vector<int>& faces, const SetupFrame& frame,
-                                           const Tool& tool, int setup, const SurfaceFinishingOptions& options = {});
+                                           const Tool& tool, int setup, const SurfaceFinishingOptions& options = {},
+                                           const std::vector<SlabState>& stock_left = {});
 
 // 5-axis finishing of `faces` with a ball end mill: centres from a drop along `face_direction` (unit, part frame), the
 // axis leaning from `frame.z` towards it (in their common plane) as the body needs, at most max_tilt_deg and never past

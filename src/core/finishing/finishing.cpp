@@ -148,6 +148,16 @@ int toolClass(const Tool* tool) {
 }
 
 
+// What roughing left in the group's frame: the setup's slabs when the group's direction is the setup's own, else
+// nothing known (another direction's frame has no slabs).
+std::vector<SlabState> stockLeftAlong(const Context& c, const Group& group) {
+  const Setup& setup = c.in.setups.setups[group.setup];
+  if (group.direction.dot(setup.frame.z) > std::cos(1e-6) &&
+      group.setup < static_cast<int>(c.in.roughing.stock_left.size()))
+    return c.in.roughing.stock_left[group.setup];
+  return {};
+}
+
 void runPlanarGroup(const Context& c, const Group& group, const std::vector<int>& tried, Tally& tally,
                     std::vector<FinishingOperation>& ops) {
   const Setup& setup = c.in.setups.setups[group.setup];
@@ -156,9 +166,7 @@ void runPlanarGroup(const Context& c, const Group& group, const std::vector<int>
   pg.frame = frameFor(c.in.part, setup, group.direction);
   pg.targets = group.planar;
   pg.stock = c.stock;
-  if (group.direction.dot(setup.frame.z) > std::cos(1e-6) &&  // the setup's own frame: roughing's slabs hold
-      group.setup < static_cast<int>(c.in.roughing.stock_left.size()))
-    pg.stock_left = c.in.roughing.stock_left[group.setup];
+  pg.stock_left = stockLeftAlong(c, group);
   PlanarResult result = finishPlanar(c.solid, pg, c.flats, c.options);
   for (const PlanarReach& r : result.reach) {
     std::string why;
@@ -191,7 +199,8 @@ void runSurfaceGroup(const Context& c, const Group& group, const std::vector<int
   const bool five = c.options.mode == MachineMode::FiveAxis;
   SurfaceFinishingResult r =
       five ? finishSurfaces5Axis(c.solid, group.surface, setup.frame, group.direction, *ball, group.setup, so)
-           : finishSurfaces3Axis(c.solid, group.surface, frameFor(part, setup, group.direction), *ball, group.setup, so);
+           : finishSurfaces3Axis(c.solid, group.surface, frameFor(part, setup, group.direction), *ball, group.setup, so,
+                                 stockLeftAlong(c, group));
   double area = 0;
   for (int f : group.surface) area += part.faces[f].area;
   const double share = area > 0 && !r.path.empty() ? std::clamp(r.planned_area_mm2 / area, 0.0, 1.0) : 0;

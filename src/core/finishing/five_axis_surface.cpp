@@ -132,7 +132,7 @@ SurfaceFinishingResult finishSurfaces5Axis(const Part& part, const std::vector<i
   drop_frame.x = d.unitOrthogonal();
   drop_frame.y = d.cross(drop_frame.x);
   SurfaceFinishingResult result;
-  Plan plan = planPasses(part, faces, drop_frame, tool, options, false, result);
+  Plan plan = planPasses(part, faces, drop_frame, tool, options, false, {}, result);
   const double R = 0.5 * tool.diameter;
 
   const AxisProbe probe(part.mesh);

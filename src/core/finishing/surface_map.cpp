@@ -4,6 +4,7 @@
 #include <map>
 #include <thread>
 
+#include "art2part/roughing/forbidden_region.h"
 #include "surface_passes.h"
 
 namespace art2part::surface {
@@ -115,6 +116,54 @@ ClearanceMap clearanceMap(const std::vector<Vec3>& vertices, const std::vector<T
     drops.fetch_add(count, std::memory_order_relaxed);
   });
   return map;
+}
+
+namespace {
+
+// Calls `fill(node)` for every node of the grid inside the region (even-odd over its rings: Clipper's regions are
+// unions, so that is their winding rule too), row by row from the crossings of the rings' edges.
+void forNodesInside(const Grid& grid, const Region& region, const std::function<void(int)>& fill) {
+  std::vector<std::vector<double>> crossings(grid.ny);
+  for (const ClipperLib::Path& ring : region)
+    for (std::size_t k = 0; k < ring.size(); ++k) {
+      const Point2 a = fromRegionPoint(ring[k]), b = fromRegionPoint(ring[(k + 1) % ring.size()]);
+      if (a.y() == b.y()) continue;
+      const double lo = std::min(a.y(), b.y()), hi = std::max(a.y(), b.y());
+      // Rows with lo <= y < hi: each crossing counted once where two edges meet at a vertex.
+      const int first = std::max(0, static_cast<int>(std::ceil((lo - grid.y0) / grid.pitch)));
+      const int last = std::min(grid.ny - 1, static_cast<int>(std::ceil((hi - grid.y0) / grid.pitch)) - 1);
+      for (int j = first; j <= last; ++j) {
+        const double y = grid.y(j);
+        if (y < lo || y >= hi) continue;
+        crossings[j].push_back(a.x() + (y - a.y()) * (b.x() - a.x()) / (b.y() - a.y()));
+      }
+    }
+  for (int j = 0; j < grid.ny; ++j) {
+    std::vector<double>& xs = crossings[j];
+    std::sort(xs.begin(), xs.end());
+    for (std::size_t k = 0; k + 1 < xs.size(); k += 2) {
+      const int from = std::max(0, static_cast<int>(std::ceil((xs[k] - grid.x0) / grid.pitch)));
+      const int to = std::min(grid.nx - 1, static_cast<int>(std::floor((xs[k + 1] - grid.x0) / grid.pitch)));
+      for (int i = from; i <= to; ++i) fill(grid.node(i, j));
+    }
+  }
+}
+
+}  // namespace
+
+void raiseOverStock(ClearanceMap& map, const std::vector<SlabState>& stock, const std::vector<Zone>& zones) {
+  if (map.tip.empty()) return;
+  Region counted;
+  for (const SlabState& slab : stock) {
+    const Region gain = subtract(slab.remaining, counted);
+    counted = unite(counted, slab.remaining);
+    if (regionEmpty(gain)) continue;
+    for (const Zone& zone : zones) {
+      const double tip = slab.top + zone.grow - zone.height;
+      forNodesInside(map.grid, growForBody(gain, zone.radius + zone.grow + map.grid.pitch),
+                     [&](int n) { map.tip[n] = std::max(map.tip[n], tip); });
+    }
+  }
 }
 
 void refineInterval(const Context& ctx, const Vec3& a, const Vec3& b, std::vector<Vec3>& out) {

@@ -13,6 +13,7 @@
 #include "art2part/finishing/drop_cutter.h"
 #include "art2part/finishing/surface_finishing.h"
 #include "art2part/geometry/part.h"
+#include "art2part/roughing/roughing.h"
 
 namespace art2part::surface {
 
@@ -60,6 +61,12 @@ struct ClearanceMap {
 };
 ClearanceMap clearanceMap(const std::vector<Vec3>& vertices, const std::vector<Triangle>& triangles, const Grid& grid,
                           const std::vector<Zone>& zones, int threads, std::atomic<long>& drops);
+
+// Raises the map where the zones meet stock: at every node within a zone's radius + grow + the grid's pitch of a
+// slab's region, the tip at least the slab's top + grow - the zone's height (the slab's material may reach its top
+// anywhere in its region). `stock`: slabs top down in the map's frame, regions in mm as roughing's (region.h). Only
+// what a slab adds to the slabs above it is rasterised (a higher slab over the same ground asks for more).
+void raiseOverStock(ClearanceMap& map, const std::vector<SlabState>& stock, const std::vector<Zone>& zones);
 
 // What the passes need: the drop-cutter, the CL map with its regions, the clearance maps, tolerances.
 struct Context {

@@ -26,6 +26,10 @@ constexpr double kFlatStepoverOfDiameter = 0.8;
 constexpr double kClearancePitchFactor = 2;
 // The CL map's nodes at most (about 40 bytes each).
 constexpr double kMaxMapNodes = 16e6;
+// mm beyond the skin that still counts as skin, not stock left (as planar finishing's), and the half width below
+// which a piece of stock left is a sliver.
+constexpr double kSkinSlack = 0.05;
+constexpr double kThinStock = 0.01;
 
 Vec3 unitNormal(const std::vector<Vec3>& v, const Triangle& t) {
   const Vec3 n = (v[t[1]] - v[t[0]]).cross(v[t[2]] - v[t[0]]);
@@ -312,6 +316,17 @@ void believedAreas(const Context& ctx, const Part& part, const std::vector<Vec3>
   }
 }
 
+// What roughing left beyond the skin (each slab's region eroded by the skin and a slack, slivers dropped), slabs top
+// down: material the shank, holder and links must clear as they clear the part grown by the skin.
+std::vector<SlabState> stockBeyondSkin(const std::vector<SlabState>& stock_left, double skin) {
+  std::vector<SlabState> thick;
+  for (const SlabState& slab : stock_left) {
+    Region left = dropThinPieces(offsetRegion(slab.remaining, -(skin + kSkinSlack)), kThinStock);
+    if (!regionEmpty(left)) thick.push_back({slab.z, slab.top, std::move(left)});
+  }
+  return thick;
+}
+
 double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -319,7 +334,8 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 }  // namespace
 
 Plan planPasses(const Part& part, const std::vector<int>& faces_in, const SetupFrame& frame, const Tool& tool,
-                const SurfaceFinishingOptions& o, bool body, SurfaceFinishingResult& result) {
+                const SurfaceFinishingOptions& o, bool body, const std::vector<SlabState>& stock_left,
+                SurfaceFinishingResult& result) {
   const auto start = std::chrono::steady_clock::now();
   checkTool(tool);
   if (tool.type == ToolType::Drill)
@@ -390,6 +406,9 @@ Plan planPasses(const Part& part, const std::vector<int>& faces_in, const SetupF
     const Grid coarse = gridOver(window, kClearancePitchFactor * pitch);
     ctx.body = clearanceMap(v, tris, coarse, bodyZones(tool, o.skin + o.holder_margin), ctx.threads, ctx.drops);
     ctx.safe = clearanceMap(v, tris, coarse, {Zone{R, 0, o.skin}}, ctx.threads, ctx.drops);
+    const std::vector<SlabState> stock = stockBeyondSkin(stock_left, o.skin);
+    raiseOverStock(ctx.body, stock, bodyZones(tool, o.holder_margin));
+    raiseOverStock(ctx.safe, stock, {Zone{R, 0, 0}});
     for (std::size_t n = 0; n < ctx.safe.tip.size(); ++n) ctx.safe.tip[n] = std::max(ctx.safe.tip[n], ctx.body.tip[n]);
   }
   const Spacings spacings{part, v, faceConcaveRadii(part), R, r, spacing, o.scallop - ctx.leave_tolerance,
