@@ -16,6 +16,7 @@
 #include "art2part/simulation/verify.h"
 #include "art2part/visibility/analysis.h"
 #include "test_meshes.h"
+#include "test_solids.h"
 
 using namespace art2part;
 
@@ -430,6 +431,51 @@ TEST(Roughing, RestPassesCutOnlyWhereTheirStockIs) {
               5e-4 * every_piece.report.removed_volume_mm3);
 }
 
+// A reach pass (issue 19): a pocket deeper than the main tool reaches before its holder meets the block's top. The
+// main tool's long-fluted twin, at its own step-down, takes what the main pass could not, where before the rest
+// passes (whose holders are no slimmer) left it to finishing. By the simulation: no gouge, no collision, each level
+// cutting within its step-down, and the pocket's bottom removed.
+TEST(Roughing, AReachPassTakesWhatTheMainToolsHolderKeptItFrom) {
+  const Part part = test::stepPart(test::pocketedBlock(Vec3(0, 0, 0), Vec3(100, 100, 100), 36, 36, 90, 12), "deep_pocket");
+  const ToolLibrary library = loadToolLibrary(kTools);
+  SetupPlan setups;
+  setups.setups.push_back(topSetup(part));
+  struct Outcome {
+    RoughingPlan roughing;
+    VerificationReport report;
+  };
+  auto plan = [&](bool reach) {
+    RoughingOptions options;
+    options.rest.reach = reach;
+    Outcome out{planRoughing(part, setups, library, options), {}};
+    out.report = verifyRoughing(part, out.roughing, library);
+    expectLevelCutsWithinTheStepDown(out.roughing, out.report, library, options);
+    return out;
+  };
+  const Outcome with = plan(true), without = plan(false);
+  ASSERT_FALSE(with.roughing.operations.empty());
+  const RoughingOperation& main = with.roughing.operations.front();
+  const Tool* main_tool = library.find(main.tool);
+  ASSERT_NE(main_tool, nullptr);
+  const RoughingOperation* reach = nullptr;
+  for (const RoughingOperation& op : with.roughing.operations)
+    if (op.kind == "reach roughing") reach = &op;
+  ASSERT_NE(reach, nullptr) << "no reach pass after " << main.tool;
+  const Tool* reach_tool = library.find(reach->tool);
+  ASSERT_NE(reach_tool, nullptr);
+  EXPECT_DOUBLE_EQ(reach_tool->diameter, main_tool->diameter);
+  EXPECT_GT(reach_tool->flute_length, main_tool->flute_length);
+  for (const RoughingOperation& op : without.roughing.operations) EXPECT_NE(op.kind, "reach roughing");
+  std::printf("deep pocket: %s then %s; removed %.0f mm3 with the reach pass, %.0f without\n", main.tool.c_str(),
+              reach->tool.c_str(), with.report.removed_volume_mm3, without.report.removed_volume_mm3);
+  for (const Outcome* o : {&with, &without}) {
+    EXPECT_EQ(o->report.gouges, 0);
+    EXPECT_EQ(o->report.collisions, 0);
+  }
+  // The main tool's holder stops it about its stickout down: the pocket's bottom 25 mm and more stayed.
+  EXPECT_GT(with.report.removed_volume_mm3 - without.report.removed_volume_mm3, 0.8 * 35.4 * 35.4 * 25);
+}
+
 // Stay-down links (issue 19): the same plan with links kept low (inside cleared material, over stock the slabs prove
 // clear) and with every link over the clearance plane. By the simulation: neither gouges nor collides, both remove
 // the same stock; the low links cut the rapid length to under 0.6x and the retracts to under 0.3x (featuretype at
@@ -495,7 +541,7 @@ TEST(Roughing, AdaptiveMainPassesCutUnderTheirEngagementWithoutCollisions) {
     Outcome out;
     for (const RoughingOperation& op : roughing.operations) {
       out.all_s += op.seconds;
-      if (op.kind == "rest roughing") continue;
+      if (op.kind == "rest roughing" || op.kind == "reach roughing") continue;  // zig-zag after either main pass
       out.main_s += op.seconds;
       const Tool* tool = library.find(op.tool);
       EXPECT_TRUE(tool != nullptr);

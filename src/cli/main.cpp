@@ -27,8 +27,9 @@ const CommandUsage kCommands[] = {
      "             the fewest setups (minimum cover of the visibility cones), their frames and what each machines\n"},
     {"plan",
      "  plan PART --out DIR [--mode 3axis|5axis] [--tilt DEG] [--level L] [...setups options] [--tools FILE]\n"
-     "             [--tool ID] [--allowance MM] [--stepdown MM] [--no-rest] [--whole-stock] [--no-stay-down] [--adaptive]\n"
-     "             [--roughing 3axis|5axis] [--no-finish] [--scallop MM] [--machine FILE] [--verify-resolution MM]   visibility, setups, holes,\n"
+     "             [--tool ID] [--allowance MM] [--stepdown MM] [--no-rest] [--no-reach] [--whole-stock] [--no-stay-down]\n"
+     "             [--adaptive] [--roughing 3axis|5axis] [--no-finish] [--scallop MM] [--machine FILE]\n"
+     "             [--verify-resolution MM]   visibility, setups, holes,\n"
      "             roughing, finishing, verification and post: DIR/plan.json, toolpaths.csv, tools.json, mesh.stl,\n"
      "             program.ngc, setups.png, remaining.png and the visibility files (progress on a terminal)\n"},
     {"verify",

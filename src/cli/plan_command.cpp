@@ -1,6 +1,6 @@
 // art2part plan PART --out DIR [--mode 3axis|5axis] [--tilt DEG] [--level L] [--time-limit S] [--no-pp]
-//                    [--tools FILE] [--tool ID] [--allowance MM] [--stepdown MM] [--no-rest] [--whole-stock] [--no-stay-down]
-//                    [--adaptive] [--machine FILE]
+//                    [--tools FILE] [--tool ID] [--allowance MM] [--stepdown MM] [--no-rest] [--no-reach] [--whole-stock]
+//                    [--no-stay-down] [--adaptive] [--machine FILE]
 //                    [--verify-resolution MM] [--roughing 3axis|5axis] [--no-finish] [--scallop MM]
 //                    plus the visibility options: the pipeline without ROS (planPart, plan_part.h). Part -> visibility
 // -> setups -> holes -> roughing -> finishing -> verification -> post. --roughing 5axis (the default with --mode 5axis) adds 5-axis voxel roughing after each
@@ -41,6 +41,7 @@ RoughingOptions roughingOptionsFrom(const Arguments& a) {
   options.levels.stepdown = a.number("stepdown", options.levels.stepdown);
   options.clearing.tool = a.value("tool", "");
   options.rest.enabled = !a.flag("no-rest");
+  options.rest.reach = !a.flag("no-reach");
   options.stock.in_process = !a.flag("whole-stock");
   options.clearing.stay_down = !a.flag("no-stay-down");
   if (a.flag("adaptive")) options.clearing.strategy = RoughingOptions::Clearing::Strategy::Engagement;
@@ -61,7 +62,7 @@ int runPlan(const std::vector<std::string>& args) {
                         "scallop"})
     options.insert(o);
   std::set<std::string> flags = setupFlags();
-  for (const char* f : {"no-rest", "whole-stock", "no-finish", "no-stay-down", "adaptive"}) flags.insert(f);
+  for (const char* f : {"no-rest", "no-reach", "whole-stock", "no-finish", "no-stay-down", "adaptive"}) flags.insert(f);
   const Arguments a(args, flags, options);
   const std::string path = a.requirePositional(1, "one part file: art2part plan PART --out DIR");
   if (!a.has("out")) throw UsageError("plan needs --out DIR");

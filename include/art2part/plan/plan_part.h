@@ -41,8 +41,8 @@ struct PlanOptions {
 struct PlanOperation {
   int index = 0;               // position in the combined path (toolpaths.csv's op)
   int setup = 0;
-  std::string kind;            // roughing | rest roughing | 5-axis roughing | face_mill | side_mill | contour | drill |
-                               // helix | surface_3axis | surface_5axis | rest
+  std::string kind;            // roughing | reach roughing | rest roughing | 5-axis roughing | face_mill | side_mill |
+                               // contour | drill | helix | surface_3axis | surface_5axis | rest
   std::string tool;
   bool finishing = false;
   int source = -1;             // index into RoughingPlan::operations or FinishingPlan::operations

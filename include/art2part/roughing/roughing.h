@@ -83,6 +83,12 @@ struct RoughingOptions {
     // The planned removal bounds the true one from above (the slabs' stock holds at least the stock there is), so a
     // dropped pass removes less than this share in the simulation too. 0 keeps every pass.
     double least_removal_share = 0.001;
+    // Before the rest passes, a reach pass: the longest-fluted flat mill of the main tool's diameter (flat20L after
+    // flat20) over what the main pass left, at its own step-down, where the main tool's shank and holder kept it out
+    // of deep pockets. Without it that stock falls to finishing's long tools, which take it at finishing feeds and
+    // depths (CTC-02: a face-mill pass removing 1.2 L). Run only in setups deeper than the main tool's flutes, and
+    // dropped as a rest pass is by least_removal_share.
+    bool reach = true;
   };
   // 5-axis voxel roughing after each setup's 3-axis operations (voxel_roughing.h).
   struct FiveAxis {
@@ -111,7 +117,8 @@ struct RoughingLevel {
 
 struct RoughingOperation {
   int setup = 0;
-  std::string kind;           // "roughing" | "adaptive roughing" | "adaptive rest roughing" | "rest roughing"
+  std::string kind;           // "roughing" | "adaptive roughing" | "adaptive rest roughing" | "reach roughing" |
+                              // "rest roughing"
   std::string tool;
   Toolpath path;              // in the part frame; op numbers are set by the caller
   std::vector<RoughingLevel> levels;
@@ -167,6 +174,8 @@ struct RoughingStart {
   const InProcessStock* earlier = nullptr; // what earlier setups left of the stock; none: the block as it is
   bool step_up = false;                    // with `previous`: the main pass's cutter again, by engagement, at
                                            // Clearing::step_up_share of its step-down (a step-up pass)
+  bool reach = false;                      // with `previous`: a longer tool than the main pass's at its own
+                                           // step-down (a reach pass, RoughingOptions::Rest::reach)
 };
 
 // One operation and the stock it leaves.

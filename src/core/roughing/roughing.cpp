@@ -74,7 +74,7 @@ double stepdownFor(const Tool& tool, const RoughingOptions& options, bool rest) 
 // mm between the levels of an operation: a step-up pass takes Clearing::step_up_share of its cutter's step-down.
 double levelStep(const Tool& tool, const RoughingOptions& options, const RoughingStart& start) {
   if (start.step_up) return options.clearing.step_up_share * stepdownFor(tool, options, false);
-  return stepdownFor(tool, options, !start.previous.empty());
+  return stepdownFor(tool, options, !start.previous.empty() && !start.reach);
 }
 
 // The stock a previous operation left in the slab [z, top] (its slabs contain ours: our levels include theirs).
@@ -179,8 +179,9 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
   // A high-efficiency cutter clears front by front under its engagement limit, in the main pass and its step-up pass;
   // rest passes take conventional tools.
   const bool by_engagement = tool.max_engagement_deg > 0 && (!before || start_from.step_up);
-  op.kind = !by_engagement ? (before ? "rest roughing" : "roughing")
-                           : (before ? "adaptive rest roughing" : "adaptive roughing");
+  op.kind = start_from.reach ? "reach roughing"
+            : !by_engagement ? (before ? "rest roughing" : "roughing")
+                             : (before ? "adaptive rest roughing" : "adaptive roughing");
   const SetupGeometry g = setupGeometry(part, setup, options);
   std::vector<RoughingLevel> levels =
       roughingLevels(part, g.part, g.stock_top, g.stock_bottom, levelStep(tool, options, start_from), options);

@@ -131,6 +131,26 @@ const Tool* restTool(const std::vector<const Tool*>& candidates, const Tool& mai
   return nullptr;
 }
 
+// The reach tool after `main`: the library's flat mill of its diameter with the longest flutes beyond its own
+// (nullptr: none). Long-series tools are no main or rest tools (roughingTools); their library cutting data (a
+// lighter stepover and feed) is what a reach pass takes.
+const Tool* reachTool(const ToolLibrary& library, const Tool& main) {
+  const Tool* best = nullptr;
+  for (const Tool& t : library.tools)
+    if (t.type == ToolType::Flat && std::abs(t.diameter - main.diameter) < 1e-9 &&
+        t.flute_length > main.flute_length + 1e-9 && (!best || t.flute_length > best->flute_length))
+      best = &t;
+  return best;
+}
+
+// How deep the setup's stock goes below its top along its direction (stock top to the part's lowest point).
+double setupDepth(const Part& part, const Setup& setup, const RoughingOptions& options) {
+  double top = -1e300, bottom = 1e300;
+  for (const Vec3& p : toFrame(roughingStock(part, options).vertices, setup.frame)) top = std::max(top, p.z());
+  for (const Vec3& p : toFrame(part.mesh.vertices, setup.frame)) bottom = std::min(bottom, p.z());
+  return top - bottom;
+}
+
 // A setup cancelled part way is dropped whole: the in-process stock and finishing count on whole setups.
 void dropSetup(RoughingPlan& plan, int k) {
   plan.operations.erase(std::remove_if(plan.operations.begin(), plan.operations.end(),
@@ -184,7 +204,7 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
   for (int k = 0; k < n && !plan.cancelled; ++k) {
     // Each operation's reports as a share of all the setups, levels counted on: setup k spans [k/n, (k+1)/n], shared
     // out among the operations it may have (the main one, the rest passes), operation j taking the j-th part.
-    const int slots = 2 + (options.rest.enabled ? std::max(0, options.rest.passes) : 0);  // main, step-up, rest
+    const int slots = 3 + (options.rest.enabled ? std::max(0, options.rest.passes) : 0);  // main, step-up, reach, rest
     int slot = 0;
     const ProgressSink within = [&](const ProgressReport& p) {
       const double share = (slot + std::clamp(p.fraction, 0.0, 1.0)) / slots;
@@ -229,21 +249,26 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
     // half the size of the one before, over what the one before left.
     const bool step_up = tool->max_engagement_deg > 0 && options.clearing.step_up_share > 0;
     const Tool* previous = tool;
-    for (int pass = step_up ? -1 : 0; pass < (options.rest.enabled ? options.rest.passes : 0); ++pass) {
-      const Tool* rest = pass < 0 ? tool : restTool(conventional, *previous);
+    const Tool* reach = options.rest.enabled && options.rest.reach ? reachTool(library, *tool) : nullptr;
+    if (reach && setupDepth(part, setup, options) <= tool->flute_length) reach = nullptr;
+    const int first = step_up ? -2 : -1;  // -2: the step-up pass, -1: the reach pass
+    for (int pass = first; pass < (options.rest.enabled ? options.rest.passes : 0); ++pass) {
+      if (pass == -1 && !reach) continue;
+      const Tool* rest = pass == -2 ? tool : pass == -1 ? reach : restTool(conventional, *previous);
       if (!rest) break;
-      slot = pass + 2;
+      slot = pass + 3;
       RoughingStart after;
       after.previous = left;
       after.earlier = stock;
-      after.step_up = pass < 0;
+      after.step_up = pass == -2;
+      after.reach = pass == -1;
       RoughingPass op = roughSetup(part, setup, k, *rest, options, after, within);
       levels_done += static_cast<long>(op.operation.levels.size());
       if (op.cancelled) {
         plan.cancelled = true;
         break;
       }
-      previous = rest;
+      if (pass >= 0) previous = rest;  // the rest tools halve from the main tool, not from the reach tool
       if (!cuts(op.operation)) {
         left = std::move(op.left);
         continue;
