@@ -18,9 +18,6 @@ constexpr double kUselessRemovalShare = 0.001;
 // An operation's time against a bound under this many seconds says nothing (a ratio to nearly nothing): no ratio.
 constexpr double kLeastBoundSeconds = 1.0;
 
-// The tool's library removal rate, mm^3/min: max_stepdown x max_stepover x feed (0 step-down = diameter / 2, 0
-// step-over = 0.4 diameter, as Tool says).
-double libraryRemovalRate(const Tool& tool);
 
 struct OperationFigures {
   int index = 0;            // plan.operations' index (toolpaths.csv's op)

@@ -87,8 +87,11 @@ struct RoughingOptions {
     // flat20) over what the main pass left, at its own step-down, where the main tool's shank and holder kept it out
     // of deep pockets. Without it that stock falls to finishing's long tools, which take it at finishing feeds and
     // depths (CTC-02: a face-mill pass removing 1.2 L). Run only in setups deeper than the main tool's flutes, and
-    // dropped as a rest pass is by least_removal_share.
+    // dropped as a rest pass is by least_removal_share, or when it is planned to remove stock at under
+    // least_reach_rate_share of its tool's library rate (libraryRemovalRate): a reach pass tracing thin stock round
+    // the part (featuretype: 6 cm3 in 525 s, 2.5 % of flat20L's rate) costs more than the finishing passes it spares.
     bool reach = true;
+    double least_reach_rate_share = 0.1;
   };
   // 5-axis voxel roughing after each setup's 3-axis operations (voxel_roughing.h).
   struct FiveAxis {

@@ -49,6 +49,9 @@ struct Tool {
 double toolRadiusAt(const Tool& tool, double h);
 double toolLength(const Tool& tool);       // tip to the top of the holder
 double holderTopRadius(const Tool& tool);  // the widest the holder gets
+// The tool's library removal rate, mm^3/min: max_stepdown x max_stepover x feed (0 step-down = diameter / 2, 0
+// step-over = 0.4 diameter, as Tool says).
+double libraryRemovalRate(const Tool& tool);
 // Which part of the tool lies at height h: the flutes cut, the shank and holder must never touch material.
 enum class ToolZone { Flutes, Shank, Holder, Above };
 ToolZone toolZoneAt(const Tool& tool, double h);

@@ -39,12 +39,6 @@ std::string uselessReason(double removed, double roughing_removed) {
 
 }  // namespace
 
-double libraryRemovalRate(const Tool& tool) {
-  const double stepdown = tool.max_stepdown > 0 ? tool.max_stepdown : tool.diameter / 2;
-  const double stepover = tool.max_stepover > 0 ? tool.max_stepover : 0.4 * tool.diameter;
-  return stepdown * stepover * tool.feed_mm_min;
-}
-
 PlanFigures planFigures(const PlanResult& plan, const Machine& machine) {
   PlanFigures figures;
   figures.limits = motionLimits(machine);

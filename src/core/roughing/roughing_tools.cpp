@@ -30,6 +30,16 @@ std::vector<const Tool*> roughingTools(const ToolLibrary& library) {
 
 namespace {
 
+// A reach pass planned to remove stock at under `share` of its tool's library rate, or empty (kept).
+std::string slowReach(const RoughingOperation& op, const Tool& tool, double share) {
+  const double rate = op.seconds > 0 ? op.planned_removal_mm3 / (op.seconds / 60) : 0.0;
+  if (rate >= share * libraryRemovalRate(tool)) return {};
+  char line[200];
+  std::snprintf(line, sizeof line, "reach pass planned to remove %.1f mm3 in %.0f s: %.1f mm3/min, under %.2g %% of %s's %.0f",
+                op.planned_removal_mm3, op.seconds, rate, 100 * share, tool.id.c_str(), libraryRemovalRate(tool));
+  return line;
+}
+
 DroppedOperation droppedPass(const RoughingOperation& op, double share, double planned_total) {
   char line[200];
   std::snprintf(line, sizeof line, "planned to remove %.1f mm3, under %.2g %% of the %.0f mm3 planned before it",
@@ -276,6 +286,13 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
       if (op.operation.planned_removal_mm3 < options.rest.least_removal_share * planned_total) {
         plan.dropped.push_back(droppedPass(op.operation, options.rest.least_removal_share, planned_total));
         continue;  // the next rest tool starts from what this one started from
+      }
+      if (pass == -1) {
+        const std::string slow = slowReach(op.operation, *rest, options.rest.least_reach_rate_share);
+        if (!slow.empty()) {
+          plan.dropped.push_back(droppedOperation(op.operation, slow));
+          continue;
+        }
       }
       planned_total += op.operation.planned_removal_mm3;
       plan.operations.push_back(std::move(op.operation));

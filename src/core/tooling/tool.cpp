@@ -79,6 +79,12 @@ double toolRadiusAt(const Tool& tool, double h) {
 
 double toolLength(const Tool& tool) { return tool.stickout + holderLength(tool); }
 
+double libraryRemovalRate(const Tool& tool) {
+  const double stepdown = tool.max_stepdown > 0 ? tool.max_stepdown : tool.diameter / 2;
+  const double stepover = tool.max_stepover > 0 ? tool.max_stepover : 0.4 * tool.diameter;
+  return stepdown * stepover * tool.feed_mm_min;
+}
+
 double holderTopRadius(const Tool& tool) {
   double widest = 0;
   for (const HolderStep& step : tool.holder) widest = std::max(widest, 0.5 * step.diameter);
