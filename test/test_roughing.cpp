@@ -474,6 +474,18 @@ TEST(Roughing, AReachPassTakesWhatTheMainToolsHolderKeptItFrom) {
   }
   // The main tool's holder stops it about its stickout down: the pocket's bottom 25 mm and more stayed.
   EXPECT_GT(with.report.removed_volume_mm3 - without.report.removed_volume_mm3, 0.8 * 35.4 * 35.4 * 25);
+
+  // No pass cuts at its tool's full library rate all the time (entries, links, the pocket's corners): asked for
+  // that, the reach pass is left out with its line, and the rest passes start from what the main pass left.
+  RoughingOptions strict;
+  strict.rest.least_reach_rate_share = 1.0;
+  const RoughingPlan slow = planRoughing(part, setups, library, strict);
+  for (const RoughingOperation& op : slow.operations) EXPECT_NE(op.kind, "reach roughing");
+  const auto dropped = std::find_if(slow.dropped.begin(), slow.dropped.end(),
+                                    [](const DroppedOperation& d) { return d.kind == "reach roughing"; });
+  ASSERT_NE(dropped, slow.dropped.end());
+  EXPECT_NE(dropped->reason.find("library rate"), std::string::npos) << dropped->reason;
+  std::printf("left out at a full-rate demand: %s\n", dropped->reason.c_str());
 }
 
 // Stay-down links (issue 19): the same plan with links kept low (inside cleared material, over stock the slabs prove

@@ -35,7 +35,8 @@ std::string slowReach(const RoughingOperation& op, const Tool& tool, double shar
   const double rate = op.seconds > 0 ? op.planned_removal_mm3 / (op.seconds / 60) : 0.0;
   if (rate >= share * libraryRemovalRate(tool)) return {};
   char line[200];
-  std::snprintf(line, sizeof line, "reach pass planned to remove %.1f mm3 in %.0f s: %.1f mm3/min, under %.2g %% of %s's %.0f",
+  std::snprintf(line, sizeof line,
+                "planned to remove %.1f mm3 in %.0f s: %.1f mm3/min, under %.3g %% of %s's library rate (%.0f mm3/min)",
                 op.planned_removal_mm3, op.seconds, rate, 100 * share, tool.id.c_str(), libraryRemovalRate(tool));
   return line;
 }
