@@ -132,4 +132,9 @@ struct FinishingInput {
 FinishingPlan planFinishing(const FinishingInput& input, const FinishingOptions& options = {},
                             const ProgressSink& progress = {});
 
+// What roughing left beyond `skin` (each slab's region eroded by the skin and a slack of 0.05 mm, slivers dropped),
+// slabs top down: the stock a finishing tool's shank, holder and links keep clear of, and planar finishing feeds
+// down through. Slabs left empty are left out.
+std::vector<SlabState> stockBeyondSkin(const std::vector<SlabState>& stock_left, double skin);
+
 }  // namespace art2part

@@ -113,15 +113,23 @@ std::vector<Point2> traceSamples(const std::vector<Vec3>& vertices, const Mesh& 
   return samples;
 }
 
+}  // namespace
+
+std::vector<SlabState> stockBeyondSkin(const std::vector<SlabState>& stock_left, double skin) {
+  std::vector<SlabState> thick;
+  for (const SlabState& slab : stock_left) {
+    Region left = dropThinPieces(offsetRegion(slab.remaining, -(skin + kSkinSlack)), kThinLeft);
+    if (!regionEmpty(left)) thick.push_back({slab.z, slab.top, std::move(left)});
+  }
+  return thick;
+}
+
+namespace {
+
 GroupGeometry groupGeometry(const Part& part, const PlanarGroup& group, double allowance) {
   GroupGeometry g;
   g.vertices = toFrame(part.mesh.vertices, group.frame);
-  auto thick = std::make_shared<std::vector<SlabState>>();
-  for (const SlabState& slab : group.stock_left) {
-    Region left = dropThinPieces(offsetRegion(slab.remaining, -(allowance + kSkinSlack)), kThinLeft);
-    if (!regionEmpty(left)) thick->push_back({slab.z, slab.top, std::move(left)});
-  }
-  g.thick = std::move(thick);
+  g.thick = std::make_shared<const std::vector<SlabState>>(stockBeyondSkin(group.stock_left, allowance));
   for (const Vec3& p : toFrame(group.stock.vertices, group.frame)) g.stock.extend(p);
   for (int t = 0; t < part.mesh.triangleCount() && t < static_cast<int>(part.triangle_face.size()); ++t)
     g.triangles_of[part.triangle_face[t]].push_back(t);

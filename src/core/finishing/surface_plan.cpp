@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "art2part/finishing/finishing.h"
 #include "art2part/roughing/shadow.h"
 
 namespace art2part::surface {
@@ -26,10 +27,6 @@ constexpr double kFlatStepoverOfDiameter = 0.8;
 constexpr double kClearancePitchFactor = 2;
 // The CL map's nodes at most (about 40 bytes each).
 constexpr double kMaxMapNodes = 16e6;
-// mm beyond the skin that still counts as skin, not stock left (as planar finishing's), and the half width below
-// which a piece of stock left is a sliver.
-constexpr double kSkinSlack = 0.05;
-constexpr double kThinStock = 0.01;
 
 Vec3 unitNormal(const std::vector<Vec3>& v, const Triangle& t) {
   const Vec3 n = (v[t[1]] - v[t[0]]).cross(v[t[2]] - v[t[0]]);
@@ -314,17 +311,6 @@ void believedAreas(const Context& ctx, const Part& part, const std::vector<Vec3>
     else
       result.planned_area_mm2 += area, plan.planned.push_back(t);
   }
-}
-
-// What roughing left beyond the skin (each slab's region eroded by the skin and a slack, slivers dropped), slabs top
-// down: material the shank, holder and links must clear as they clear the part grown by the skin.
-std::vector<SlabState> stockBeyondSkin(const std::vector<SlabState>& stock_left, double skin) {
-  std::vector<SlabState> thick;
-  for (const SlabState& slab : stock_left) {
-    Region left = dropThinPieces(offsetRegion(slab.remaining, -(skin + kSkinSlack)), kThinStock);
-    if (!regionEmpty(left)) thick.push_back({slab.z, slab.top, std::move(left)});
-  }
-  return thick;
 }
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
