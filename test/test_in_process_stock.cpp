@@ -45,7 +45,7 @@ TEST(InProcessStock, WhatACutTookIsGoneAndWhatItLeftStays) {
   // A 20 x 20 x 10 part in a 40 x 40 x 20 block; a 10 mm mill clears everything above z = 10.
   const Part part = partFromMesh(test::box(Vec3(10, 10, 0), Vec3(30, 30, 10)), "block");
   const Mesh stock = test::box(Vec3(0, 0, 0), Vec3(40, 40, 20));
-  InProcessStock in_process(part, stock, 400);  // 2 mm cells
+  InProcessStock in_process(part, stock, 400, 2.0);  // 2 mm cells
   EXPECT_NEAR(in_process.cell(), 2.0, 1e-9);
   EXPECT_NEAR(in_process.volume(), 40 * 40 * 20, 1e-6);
   in_process.remove(raster(-6, 46, -6, 46, 10), {flat10()});
@@ -81,11 +81,39 @@ TEST(InProcessStock, AWallThinnerThanACellIsSeen) {
   // A plate 0.6 mm thick standing between two of the z-rays: the x-rays cross it, so every slab from +z holds it.
   const Part part = partFromMesh(test::box(Vec3(100, 100, 0), Vec3(101, 101, 1)), "far away");
   const Mesh plate = test::box(Vec3(10.7, 0, 0), Vec3(11.3, 40, 20));
-  InProcessStock in_process(part, plate, 400);
+  InProcessStock in_process(part, plate, 400, 2.0);  // cells wider than the plate
   SetupFrame top;
   const std::vector<Region> slabs = in_process.slabs(top, {{15, 16}, {5, 6}});
   for (const Region& r : slabs) {
     EXPECT_TRUE(inside(r, 11, 20));
     EXPECT_TRUE(inside(r, 11, 1));
+  }
+}
+
+TEST(InProcessStock, TheFilmOnACutFaceIsNotProvenStock) {
+  // The cut of the first test: everything above z = 10 is gone but the film the model keeps on the floor.
+  const Part part = partFromMesh(test::box(Vec3(10, 10, 0), Vec3(30, 30, 10)), "block");
+  const Mesh stock = test::box(Vec3(0, 0, 0), Vec3(40, 40, 20));
+  InProcessStock in_process(part, stock, 400, 2.0);  // 2 mm cells
+  in_process.remove(raster(-6, 46, -6, 46, 10), {flat10()});
+  SetupFrame top;
+  const std::vector<std::pair<double, double>> slabs = {{10, 13}, {0, 9}};
+  const std::vector<Region> may = in_process.slabs(top, slabs), proven = in_process.provenSlabs(top, slabs);
+  // The film over the floor: in what may be there, not in what is.
+  EXPECT_TRUE(inside(may[0], 20, 20));
+  EXPECT_TRUE(regionEmpty(proven[0])) << regionArea(proven[0]);
+  // Below the floor the stock and the part are there, out to the block's sides (grown back over the proof's cell).
+  for (double x : {0.5, 5.0, 20.0, 39.5}) EXPECT_TRUE(inside(proven[1], x, 20)) << x;
+}
+
+TEST(InProcessStock, StockTwoCellsThickIsProvenAndThinnerIsNot) {
+  const Part part = partFromMesh(test::box(Vec3(100, 100, 0), Vec3(101, 101, 1)), "far away");
+  SetupFrame top;
+  for (const double thickness : {5.0, 3.0}) {  // cells of 2 mm
+    const Mesh plate = test::box(Vec3(10, 0, 0), Vec3(10 + thickness, 40, 20));
+    InProcessStock in_process(part, plate, 400, 2.0);
+    const std::vector<Region> may = in_process.slabs(top, {{5, 15}}), proven = in_process.provenSlabs(top, {{5, 15}});
+    EXPECT_TRUE(inside(may[0], 10 + thickness / 2, 20)) << thickness;
+    EXPECT_EQ(inside(proven[0], 10 + thickness / 2, 20), thickness > 4) << thickness;
   }
 }

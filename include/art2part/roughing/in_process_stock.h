@@ -25,8 +25,11 @@ class PartDistance;
 
 class InProcessStock {
  public:
-  // The block of `stock` (a closed mesh in the part frame) around `solid`, on a lattice of about `rays` z-rays (cells of 0.5 mm at the finest).
-  InProcessStock(const Part& solid, const Mesh& stock, int rays = 20000);
+  // The block of `stock` (a closed mesh in the part frame) around `solid`, on a lattice of about `rays` z-rays, its
+  // cells no coarser than `coarsest` mm unless that needs more than `max_rays` z-rays, and never finer than 0.5 mm.
+  // Throws InputError when a count is under 1 or `coarsest` not positive.
+  InProcessStock(const Part& solid, const Mesh& stock, long rays = 20000, double coarsest = 1.5,
+                 long max_rays = 400000);
   ~InProcessStock();
   InProcessStock(const InProcessStock&) = delete;
   InProcessStock& operator=(const InProcessStock&) = delete;
@@ -40,10 +43,22 @@ class InProcessStock {
   // projection is rasterised): a superset of the material there, part included.
   std::vector<Region> slabs(const SetupFrame& frame, const std::vector<std::pair<double, double>>& slabs) const;
 
+  // What of the material in each slab the model proves is there: the points of its rays in the slab with material a
+  // cell every way along the three axes (solidAround), projected and grown back by two cells (the proof stops a cell
+  // inside the material; a raster cell stands for a point in it). Free of the film the model keeps on faces cut
+  // square to an axis or at an angle in a coordinate plane, which slabs() holds and a setup cutting by it would trace
+  // as stock: cut only this, keep holders and links clear of slabs(). Stock thinner than two cells along an axis is
+  // not proven.
+  std::vector<Region> provenSlabs(const SetupFrame& frame, const std::vector<std::pair<double, double>>& slabs) const;
+
   double cell() const;      // the lattice's largest spacing, mm
   double volume() const;    // mm^3 of material left, part included
 
  private:
+  std::vector<Region> project(const SetupFrame& frame, const std::vector<std::pair<double, double>>& slabs,
+                              bool proven) const;
+  bool solidAround(const Vec3& p) const;
+
   Stock stock_;
   std::unique_ptr<MeshDexels> part_;
   std::unique_ptr<PartDistance> distance_;

@@ -30,7 +30,12 @@ struct RoughingOptions {
     std::shared_ptr<const Mesh> mesh;  // the raw stock instead of the box (its convex hull per slab is cleared)
     // Each setup starts from the stock the setups before it left (in_process_stock.h), not from the whole block.
     bool in_process = true;
-    int in_process_rays = 20000;  // z-rays of the in-process stock's coarse lattice (cells of 0.5 mm at the finest)
+    // The in-process stock's lattice (in_process_stock.h): about in_process_rays z-rays, but cells no coarser than
+    // in_process_cell unless that needs more than in_process_max_rays. The model's film on what was cut grows with the
+    // cell: a ray count alone made CTC-02's cells 5.4 mm.
+    long in_process_rays = 20000;
+    double in_process_cell = 1.5;  // mm
+    long in_process_max_rays = 400000;
   };
   // Where the slabs of a setup lie.
   struct Levels {

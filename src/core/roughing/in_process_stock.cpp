@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <thread>
 
 #include "art2part/simulation/mesh_dexels.h"
 #include "art2part/simulation/part_distance.h"
@@ -15,11 +16,15 @@ namespace {
 // The lattice's cells are never finer than this, whatever the rays asked: the model only needs to know where whole
 // slabs of stock are gone.
 constexpr double kFinestCellMm = 0.5;
+constexpr int kMostThreads = 8;  // projecting the slabs
 
-DexelLattice coarseLattice(const Box& box, int rays) {
+DexelLattice coarseLattice(const Box& box, long rays, double coarsest, long max_rays) {
+  if (rays < 1 || !(coarsest > 0) || max_rays < 1)
+    throw InputError("in-process stock: the ray counts must be at least 1 and the coarsest cell positive");
   const Vec3 s = box.size();
-  const double resolution = std::max(kFinestCellMm, std::sqrt(s.x() * s.y() / std::max(rays, 1)));
-  return DexelLattice::over(box, resolution);
+  const double area = s.x() * s.y();
+  const double cell = std::min(std::sqrt(area / static_cast<double>(rays)), coarsest);
+  return DexelLattice::over(box, std::max({kFinestCellMm, cell, std::sqrt(area / static_cast<double>(max_rays))}));
 }
 
 // A raster of the frame's x-y plane, a bit per cell.
@@ -32,6 +37,9 @@ struct Raster {
     if (i < 0 || j < 0 || i >= nx || j >= ny) return;
     const std::size_t k = static_cast<std::size_t>(j) * nx + i;
     bits[k >> 6] |= std::uint64_t(1) << (k & 63);
+  }
+  bool marked(double x, double y) const {
+    return at(static_cast<int>(std::floor((x - x0) / cell)), static_cast<int>(std::floor((y - y0) / cell)));
   }
   bool at(int i, int j) const {
     if (i < 0 || j < 0 || i >= nx || j >= ny) return false;
@@ -87,11 +95,11 @@ Region rasterRegion(const Raster& r, int grow) {
 
 }  // namespace
 
-InProcessStock::InProcessStock(const Part& solid, const Mesh& stock, int rays) {
+InProcessStock::InProcessStock(const Part& solid, const Mesh& stock, long rays, double coarsest, long max_rays) {
   Box box = boundingBox(stock);
   box.extend(boundingBox(solid.mesh).min);
   box.extend(boundingBox(solid.mesh).max);
-  const DexelLattice lattice = coarseLattice(box, rays);
+  const DexelLattice lattice = coarseLattice(box, rays, coarsest, max_rays);
   part_ = std::make_unique<MeshDexels>(solid.mesh, lattice);
   stock_ = meshStock(MeshDexels(stock, lattice));
   addSolid(stock_, *part_);
@@ -151,6 +159,36 @@ void InProcessStock::remove(const Toolpath& path, const std::vector<Tool>& tools
 
 std::vector<Region> InProcessStock::slabs(const SetupFrame& frame,
                                           const std::vector<std::pair<double, double>>& slabs) const {
+  return project(frame, slabs, false);
+}
+
+std::vector<Region> InProcessStock::provenSlabs(const SetupFrame& frame,
+                                                const std::vector<std::pair<double, double>>& slabs) const {
+  return project(frame, slabs, true);
+}
+
+// Material at `p` with a cell of it every way along the three axes: on the nearest ray of each family, one span holds
+// [p - cell, p + cell] along the ray. A film the eroded tools left on a cut face (at most half a cell's diagonal
+// thick along the face's normal) fails it along the axis nearest that normal for every face whose normal lies in a
+// coordinate plane.
+bool InProcessStock::solidAround(const Vec3& p) const {
+  const DexelLattice& lattice = stock_.lattice;
+  const double reach = lattice.spacing.maxCoeff();
+  for (int axis = 0; axis < 3; ++axis) {
+    const int u = DexelLattice::uAxis(axis), v = DexelLattice::vAxis(axis);
+    const int iu = static_cast<int>(std::floor((p[u] - lattice.box.min[u]) / lattice.spacing[u]));
+    const int iv = static_cast<int>(std::floor((p[v] - lattice.box.min[v]) / lattice.spacing[v]));
+    if (iu < 0 || iv < 0 || iu >= lattice.cells[u] || iv >= lattice.cells[v]) return false;
+    const SpanList& spans = stock_.ray(axis, lattice.rayIndex(axis, iu, iv));
+    const double lo = p[axis] - reach, hi = p[axis] + reach;
+    auto it = std::upper_bound(spans.begin(), spans.end(), lo, [](double t, const Span& s) { return t < s.hi; });
+    if (it == spans.end() || it->lo > lo || it->hi < hi) return false;
+  }
+  return true;
+}
+
+std::vector<Region> InProcessStock::project(const SetupFrame& frame,
+                                            const std::vector<std::pair<double, double>>& slabs, bool proven) const {
   const DexelLattice& lattice = stock_.lattice;
   // The raster spans the lattice box's projection; its cells as large as the lattice's.
   Raster proto;
@@ -169,8 +207,6 @@ std::vector<Region> InProcessStock::slabs(const SetupFrame& frame,
   proto.nx = static_cast<int>(std::ceil((x1 - proto.x0) / proto.cell)) + 1;
   proto.ny = static_cast<int>(std::ceil((y1 - proto.y0) / proto.cell)) + 1;
   proto.bits.assign((static_cast<std::size_t>(proto.nx) * proto.ny + 63) / 64, 0);
-  std::vector<Raster> rasters(slabs.size(), proto);
-
   // Slabs by their bottom, highest first: a piece of a column visits only those it can reach (a hot loop: rays x
   // spans x slabs otherwise).
   std::vector<std::size_t> order(slabs.size());
@@ -180,19 +216,22 @@ std::vector<Region> InProcessStock::slabs(const SetupFrame& frame,
     tallest = std::max(tallest, slabs[i].second - slabs[i].first);
   }
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return slabs[a].first > slabs[b].first; });
-  // Every family of rays: a wall thinner than a cell that one family passes between is crossed by another.
   const double step = 0.5 * proto.cell;
-  for (int axis = 0; axis < 3; ++axis) {
+  // The rays of rows [row0, row1) of family `axis` marked on `rasters`.
+  const auto walk = [&](int axis, int row0, int row1, std::vector<Raster>& rasters) {
     const Vec3 along(frame.x[axis], frame.y[axis], frame.z[axis]);  // the rays' direction in the frame
     // A ray stands for a column a cell wide: its material reaches this far along the frame's z beyond the ray.
     const int u = DexelLattice::uAxis(axis), v = DexelLattice::vAxis(axis);
-    const double thick = 0.5 * (std::abs(frame.z[u]) * lattice.spacing[u] + std::abs(frame.z[v]) * lattice.spacing[v]);
-    const int nu = lattice.cells[DexelLattice::uAxis(axis)], nv = lattice.cells[DexelLattice::vAxis(axis)];
-    for (int iv = 0; iv < nv; ++iv)
+    // Proven material is only what lies in the slab.
+    const double thick =
+        proven ? 0.0 : 0.5 * (std::abs(frame.z[u]) * lattice.spacing[u] + std::abs(frame.z[v]) * lattice.spacing[v]);
+    const int nu = lattice.cells[u];
+    for (int iv = row0; iv < row1; ++iv)
       for (int iu = 0; iu < nu; ++iu) {
         const SpanList& spans = stock_.ray(axis, lattice.rayIndex(axis, iu, iv));
         if (spans.empty()) continue;
-        const Vec3 d = lattice.rayOrigin(axis, iu, iv) - frame.origin;
+        const Vec3 ray0 = lattice.rayOrigin(axis, iu, iv);
+        const Vec3 d = ray0 - frame.origin;
         const Vec3 origin(d.dot(frame.x), d.dot(frame.y), d.dot(frame.z));  // the ray at t = 0, in the frame
         for (const Span& span : spans) {
           const double za = origin.z() + span.lo * along.z(), zb = origin.z() + span.hi * along.z();
@@ -215,20 +254,46 @@ std::vector<Region> InProcessStock::slabs(const SetupFrame& frame,
             }
             const Point2 p0(origin.x() + t0 * along.x(), origin.y() + t0 * along.y());
             const Point2 p1(origin.x() + t1 * along.x(), origin.y() + t1 * along.y());
-            const int n = static_cast<int>(std::ceil((p1 - p0).norm() / step)) + 1;
+            const int n = static_cast<int>(std::ceil(std::max((p1 - p0).norm(), proven ? t1 - t0 : 0.0) / step)) + 1;
             for (int k = 0; k <= n; ++k) {
-              const Point2 q = p0 + (p1 - p0) * (static_cast<double>(k) / n);
+              const double f = static_cast<double>(k) / n;
+              const Point2 q = p0 + (p1 - p0) * f;
+              if (proven) {  // the proof costs three searches: not for a cell already marked
+                if (rasters[s].marked(q.x(), q.y())) continue;
+                Vec3 at = ray0;
+                at[axis] = t0 + (t1 - t0) * f;
+                if (!solidAround(at)) continue;
+              }
               rasters[s].mark(q.x(), q.y());
             }
           }
         }
       }
-  }
+  };
+  // Every family of rays (a wall thinner than a cell that one family passes between is crossed by another), each
+  // thread its share of every family's rows on rasters of its own, merged after.
+  const int threads = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, kMostThreads);
+  std::vector<std::vector<Raster>> own(threads, std::vector<Raster>(slabs.size(), proto));
+  std::vector<std::thread> pool;
+  for (int t = 0; t < threads; ++t)
+    pool.emplace_back([&, t] {
+      for (int axis = 0; axis < 3; ++axis) {
+        const int rows = lattice.cells[DexelLattice::vAxis(axis)];
+        walk(axis, rows * t / threads, rows * (t + 1) / threads, own[t]);
+      }
+    });
+  for (std::thread& t : pool) t.join();
+  std::vector<Raster>& rasters = own[0];
+  for (int t = 1; t < threads; ++t)
+    for (std::size_t s = 0; s < slabs.size(); ++s)
+      for (std::size_t w = 0; w < rasters[s].bits.size(); ++w) rasters[s].bits[w] |= own[t][s].bits[w];
   // A cell more: material lies within half a cell's diagonal of a ray's (see remove), and the points marked are half
   // a cell apart.
   std::vector<Region> out;
   out.reserve(slabs.size());
-  for (const Raster& r : rasters) out.push_back(rasterRegion(r, 1));
+  // Proven material grows back by two cells: its proof stops a cell inside the material, and a marked cell stands for
+  // a point in it.
+  for (const Raster& r : rasters) out.push_back(rasterRegion(r, proven ? 2 : 1));
   return out;
 }
 

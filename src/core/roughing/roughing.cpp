@@ -213,12 +213,14 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
   std::vector<SlabState> slabs;
   slabs.reserve(levels.size());  // left_above points into it
   std::vector<StockLeft> left_above;
-  std::vector<Region> in_process_slabs;  // what earlier setups left in each slab
+  std::vector<Region> in_process_slabs;  // what earlier setups left in each slab: all that may be there
+  std::vector<Region> in_process_proven;  // what the model proves is there: to be cut
   if (in_process) {
     std::vector<std::pair<double, double>> extents;
     double above = g.stock_top;
     for (const RoughingLevel& level : levels) extents.emplace_back(level.z, above), above = level.z;
     in_process_slabs = in_process->slabs(setup.frame, extents);
+    in_process_proven = in_process->provenSlabs(setup.frame, extents);
   }
   double top = g.stock_top;
   const std::string what = op.kind + ", " + tool.id + ", level ";
@@ -238,11 +240,13 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
       const Region* left = beforeRemaining(*before, z, top);
       stock = left ? intersect(stock, *left) : Region{};
     }
-    // What this operation is to remove: all the stock, or for a rest pass what lies beyond the allowance.
-    Region target = stock;
+    // What this operation is to remove: all the stock (that earlier setups' model proves there), or for a rest pass
+    // what of it lies beyond the allowance. Shanks, holders and links keep clear of all of `stock`.
+    const Region proven = in_process ? intersect(stock, in_process_proven[index]) : stock;
+    Region target = proven;
     if (before) {
       const Region& skin = part_with_allowance.at(z, {});
-      const Region beyond_skin = subtract(stock, skin);
+      const Region beyond_skin = subtract(proven, skin);
       target = dropSlivers(offsetRegion(offsetRegion(beyond_skin, -kRestTargetOpeningMm), kRestTargetOpeningMm),
                            kRestTargetSliverMm2);
     }
@@ -290,7 +294,7 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
       planned.slabs.push_back(slab);
       planned.swept.push_back(swept);
     }
-    op.planned_removal_mm3 += regionArea(intersect(stock, swept)) * (top - z);
+    op.planned_removal_mm3 += regionArea(intersect(proven, swept)) * (top - z);  // not the model's film
     level.remaining_mm2 = regionArea(slab.remaining);
     level.rings = static_cast<int>(clear.centre.size());
     slabs.push_back(std::move(slab));

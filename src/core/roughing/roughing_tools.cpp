@@ -108,7 +108,7 @@ const Tool* chooseRoughingTool(const Part& part, const Setup& setup, const std::
       above = z;
     }
     if (in_process) {
-      const std::vector<Region> left = in_process->slabs(setup.frame, extents);
+      const std::vector<Region> left = in_process->provenSlabs(setup.frame, extents);  // what a tool would cut
       for (int i = 0; i < n; ++i) stocks[i] = intersect(stocks[i], left[i]);
     }
     // Shadows at the levels and every 2 mm above them (for the shanks and holders).
@@ -207,7 +207,8 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
   if (!forced && main_tools.empty()) throw InputError("roughing: the tool library has no flat or bull end mill");
   std::unique_ptr<InProcessStock> in_process;
   if (options.stock.in_process && setups.setups.size() > 1)
-    in_process = std::make_unique<InProcessStock>(part, roughingStock(part, options), options.stock.in_process_rays);
+    in_process = std::make_unique<InProcessStock>(part, roughingStock(part, options), options.stock.in_process_rays,
+                                                  options.stock.in_process_cell, options.stock.in_process_max_rays);
   plan.stock_left.resize(setups.setups.size());
   const int n = static_cast<int>(setups.setups.size());
   long levels_done = 0;
