@@ -18,7 +18,6 @@ constexpr double kUselessRemovalShare = 0.001;
 // An operation's time against a bound under this many seconds says nothing (a ratio to nearly nothing): no ratio.
 constexpr double kLeastBoundSeconds = 1.0;
 
-
 struct OperationFigures {
   int index = 0;            // plan.operations' index (toolpaths.csv's op)
   bool finishing = false;
