@@ -102,8 +102,33 @@ TEST(InProcessStock, TheFilmOnACutFaceIsNotProvenStock) {
   // The film over the floor: in what may be there, not in what is.
   EXPECT_TRUE(inside(may[0], 20, 20));
   EXPECT_TRUE(regionEmpty(proven[0])) << regionArea(proven[0]);
-  // Below the floor the stock and the part are there, out to the block's sides (grown back over the proof's cell).
-  for (double x : {0.5, 5.0, 20.0, 39.5}) EXPECT_TRUE(inside(proven[1], x, 20)) << x;
+  // Below the floor the stock round the part is there, out to the block's sides (grown back over the proof's cell);
+  // the part is no stock.
+  for (double x : {0.5, 5.0, 35.0, 39.5}) EXPECT_TRUE(inside(proven[1], x, 20)) << x;
+  EXPECT_FALSE(inside(proven[1], 20, 20));
+  EXPECT_TRUE(inside(may[1], 20, 20));
+}
+
+TEST(InProcessStock, TheAllowanceOverAFinishedPartIsNoStock) {
+  // Earlier setups took everything to 0.3 mm of the part: the model holds the part, the allowance and its film, which
+  // a later setup would trace round the part at every level as stock. Thicker stock on one side stays proven.
+  const Part part = partFromMesh(test::box(Vec3(10, 10, 0), Vec3(30, 30, 10)), "block");
+  for (const double side : {0.3, 10.0}) {
+    const Mesh stock = test::box(Vec3(9.7, 9.7, 0), Vec3(30 + side, 30.3, 10.3));
+    InProcessStock in_process(part, stock, 400, 1.5);
+    SetupFrame top;
+    const std::vector<Region> may = in_process.slabs(top, {{2, 8}}), proven = in_process.provenSlabs(top, {{2, 8}});
+    EXPECT_GE(regionArea(may[0]), 20.6 * 20.6) << side;
+    EXPECT_FALSE(inside(proven[0], 20, 20)) << side;     // the part
+    EXPECT_FALSE(inside(proven[0], 9.85, 20)) << side;   // the allowance beside it
+    if (side < 1) {
+      EXPECT_TRUE(regionEmpty(proven[0])) << regionArea(proven[0]);
+    } else {
+      EXPECT_TRUE(inside(proven[0], 35, 20));            // 5 mm clear of the part, 5 mm from the stock's side
+      EXPECT_TRUE(inside(proven[0], 30.5, 20));          // grown back to the allowance
+      EXPECT_FALSE(inside(proven[0], 35, 5));            // never far beyond the stock
+    }
+  }
 }
 
 TEST(InProcessStock, StockTwoCellsThickIsProvenAndThinnerIsNot) {
@@ -117,3 +142,4 @@ TEST(InProcessStock, StockTwoCellsThickIsProvenAndThinnerIsNot) {
     EXPECT_EQ(inside(proven[0], 10 + thickness / 2, 20), thickness > 4) << thickness;
   }
 }
+

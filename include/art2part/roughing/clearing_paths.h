@@ -46,7 +46,12 @@ struct ClearingLevel {
   // where they had stock to remove, so skins thinner than that may stand over its centre (CTC-01's step-up pass: a
   // rapid at the safe height over the centre met 0.06 mm of one): false, and links over the slab are not taken at
   // the safe height nor over this operation's cleared levels, only where the stock model proves them clear.
+  // A later setup's pass cuts only the stock the in-process model proves (provenSlabs), so its levels above leave
+  // the model's film on faces earlier setups cut, wherever it stands over its centres (ANC101: a main pass's rapids
+  // down to the safe height met 1.3 mm of it): both flags false, and every descent to the safe height over a start
+  // point is a rapid only down to the lowest height `clear_height` proves clear, a plunge at the feed below it.
   bool column_clear = true;
+  bool descents_clear = true;
   // Stay-down links only (ClearingOptions::stay_down):
   std::optional<Eigen::Vector3d> from;  // where the tool is (the last point of the level before); none: the
                                         // clearance plane. Its column must be clear from its height up.
@@ -103,6 +108,8 @@ struct ClearingStats {
   int ramps = 0;                   // entries by a ramp
   int plunges_in_air = 0;          // straight down where the tool meets no stock
   int plunges_into_stock = 0;      // straight down into stock: only for a pass too short to ramp along
+  int column_plunges = 0;          // down at the feed to the safe height, from the lowest height the stock model
+                                   // proves clear (ClearingLevel::descents_clear false)
   int retracts = 0;                // rapids up to the clearance plane, the last one included
   int level_links = 0;             // stay-down: links fed along the level
   int hops = 0;                    // stay-down: links over cleared material below the clearance plane

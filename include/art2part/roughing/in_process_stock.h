@@ -43,12 +43,14 @@ class InProcessStock {
   // projection is rasterised): a superset of the material there, part included.
   std::vector<Region> slabs(const SetupFrame& frame, const std::vector<std::pair<double, double>>& slabs) const;
 
-  // What of the material in each slab the model proves is there: the points of its rays in the slab with material a
-  // cell every way along the three axes (solidAround), projected and grown back by two cells (the proof stops a cell
-  // inside the material; a raster cell stands for a point in it). Free of the film the model keeps on faces cut
-  // square to an axis or at an angle in a coordinate plane, which slabs() holds and a setup cutting by it would trace
-  // as stock: cut only this, keep holders and links clear of slabs(). Stock thinner than two cells along an axis is
-  // not proven.
+  // What of the stock in each slab the model proves is there: the points of its rays in the slab with material a
+  // cell every way along the three axes and no part within kPartClearanceCells along any (stockAround), projected and
+  // grown back by two cells (the proof stops a cell inside the material; a raster cell stands for a point in it).
+  // Free of the film the model keeps on faces cut square to an axis or at an angle in a coordinate plane, and of the
+  // part with the allowance and film over its faces finished by earlier setups, which slabs() holds and a setup
+  // cutting by it would trace as stock, round the part at every level: cut only this, keep holders, links and
+  // descents clear of slabs(). Stock thinner than two cells along an axis, or within a cell of the part unless thicker
+  // stock beyond it is proven, is not proven: a setup's levels near the part nest (roughing.cpp, nestCentres).
   std::vector<Region> provenSlabs(const SetupFrame& frame, const std::vector<std::pair<double, double>>& slabs) const;
 
   double cell() const;      // the lattice's largest spacing, mm
@@ -57,7 +59,9 @@ class InProcessStock {
  private:
   std::vector<Region> project(const SetupFrame& frame, const std::vector<std::pair<double, double>>& slabs,
                               bool proven) const;
-  bool solidAround(const Vec3& p) const;
+  bool stockAround(const Vec3& p) const;
+
+  static constexpr double kPartClearanceCells = 1;  // stockAround: no part nearer along any axis
 
   Stock stock_;
   std::unique_ptr<MeshDexels> part_;

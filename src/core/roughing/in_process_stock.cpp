@@ -167,22 +167,27 @@ std::vector<Region> InProcessStock::provenSlabs(const SetupFrame& frame,
   return project(frame, slabs, true);
 }
 
-// Material at `p` with a cell of it every way along the three axes: on the nearest ray of each family, one span holds
-// [p - cell, p + cell] along the ray. A film the eroded tools left on a cut face (at most half a cell's diagonal
-// thick along the face's normal) fails it along the axis nearest that normal for every face whose normal lies in a
-// coordinate plane.
-bool InProcessStock::solidAround(const Vec3& p) const {
+// Stock at `p`: material a cell every way along the three axes (on the nearest ray of each family, one span holds
+// [p - cell, p + cell] along the ray) and no part within kPartClearanceCells along any of them. A film the eroded
+// tools left on a cut face (at most half a cell's diagonal thick along the face's normal) fails the first test along
+// the axis nearest that normal for every face whose normal lies in a coordinate plane; the part fails the second, and
+// so does the allowance with the film over a face finished to it (0.9 cell along the normal at 1.5 mm cells and a
+// 0.3 mm allowance) along the axis nearest the face's normal when that lies within 25 deg of it.
+bool InProcessStock::stockAround(const Vec3& p) const {
   const DexelLattice& lattice = stock_.lattice;
-  const double reach = lattice.spacing.maxCoeff();
+  const double reach = lattice.spacing.maxCoeff(), clearance = kPartClearanceCells * reach;
   for (int axis = 0; axis < 3; ++axis) {
     const int u = DexelLattice::uAxis(axis), v = DexelLattice::vAxis(axis);
     const int iu = static_cast<int>(std::floor((p[u] - lattice.box.min[u]) / lattice.spacing[u]));
     const int iv = static_cast<int>(std::floor((p[v] - lattice.box.min[v]) / lattice.spacing[v]));
     if (iu < 0 || iv < 0 || iu >= lattice.cells[u] || iv >= lattice.cells[v]) return false;
-    const SpanList& spans = stock_.ray(axis, lattice.rayIndex(axis, iu, iv));
+    const int ray = lattice.rayIndex(axis, iu, iv);
+    const SpanList& spans = stock_.ray(axis, ray);
     const double lo = p[axis] - reach, hi = p[axis] + reach;
     auto it = std::upper_bound(spans.begin(), spans.end(), lo, [](double t, const Span& s) { return t < s.hi; });
     if (it == spans.end() || it->lo > lo || it->hi < hi) return false;
+    for (const SolidSpan* s = part_->begin(axis, ray); s != part_->end(axis, ray); ++s)
+      if (s->hi >= p[axis] - clearance && s->lo <= p[axis] + clearance) return false;
   }
   return true;
 }
@@ -262,7 +267,7 @@ std::vector<Region> InProcessStock::project(const SetupFrame& frame,
                 if (rasters[s].marked(q.x(), q.y())) continue;
                 Vec3 at = ray0;
                 at[axis] = t0 + (t1 - t0) * f;
-                if (!solidAround(at)) continue;
+                if (!stockAround(at)) continue;
               }
               rasters[s].mark(q.x(), q.y());
             }
@@ -291,8 +296,8 @@ std::vector<Region> InProcessStock::project(const SetupFrame& frame,
   // a cell apart.
   std::vector<Region> out;
   out.reserve(slabs.size());
-  // Proven material grows back by two cells: its proof stops a cell inside the material, and a marked cell stands for
-  // a point in it.
+  // Proven stock grows back by two cells: its proof stops a cell inside the material, and a marked cell stands for a
+  // point in it.
   for (const Raster& r : rasters) out.push_back(rasterRegion(r, proven ? 2 : 1));
   return out;
 }

@@ -81,7 +81,7 @@ class PathWriter {
   bool linkTo(const Point2& start, bool may_feed, double entry_s, const Region& feed_region) {
     if (!placed()) {
       add(start, options_.clearance_z, ClearingMove::Rapid);
-      add(start, safe_z_, ClearingMove::Rapid);
+      descend(start, options_.clearance_z);
       return false;
     }
     const Point2 from = at();
@@ -159,6 +159,22 @@ class PathWriter {
   void moveAbove(const Point2& start, double height) {
     add(at(), height, ClearingMove::Rapid);
     add(start, height, ClearingMove::Rapid);
+    descend(start, height);
+  }
+
+  // From `height` over `start` down to the safe height above the slab: a rapid, or where descents are not known clear
+  // (ClearingLevel::descents_clear) a rapid down to the lowest height the stock model proves clear and a plunge at the
+  // feed below it.
+  void descend(const Point2& start, double height) {
+    double proven = safe_z_;
+    if (!level_.descents_clear && level_.clear_height && height > safe_z_)
+      proven = level_.clear_height(start, start, safe_z_, height);
+    if (proven > safe_z_) {
+      add(start, proven, ClearingMove::Rapid);
+      add(start, safe_z_, ClearingMove::Plunge);
+      ++stats_.column_plunges;
+      return;
+    }
     add(start, safe_z_, ClearingMove::Rapid);
   }
 

@@ -28,6 +28,9 @@ constexpr double kRestTargetSliverMm2 = 0.01;  // and a piece of it smaller than
 constexpr double kCentreSliverMm2 = 0.001;     // centre regions smaller than this are dropped
 constexpr double kAirGapMm = 0.1;              // centres farther than radius + this from the stock cut air
 constexpr double kClearedInsetMm = 0.05;       // the cleared area: centres grown by the radius less this
+// nestCentres: a later setup's level takes in the centres below within this many in-process cells of its forbidden
+// region (the remnant within a cell of the part that the proof leaves, its film and the proof's own cell).
+constexpr double kNestBandCells = 3;
 
 // The pieces of a centre region whose sweep (each grown by `reach`) takes at least `least_mm2` of `target`.
 Region piecesReaching(const Region& centre, const Region& target, double reach, double least_mm2) {
@@ -36,6 +39,39 @@ Region piecesReaching(const Region& centre, const Region& target, double reach, 
     if (regionArea(intersect(offsetRegion(piece.rings, reach), target)) >= least_mm2)
       kept.insert(kept.end(), piece.rings.begin(), piece.rings.end());
   return kept;
+}
+
+// One level of an operation once its centre region is known: what the moves and the slabs left are drawn from.
+struct LevelDraft {
+  Region stock;      // all the stock that may be in the slab (the model's film included)
+  Region proven;     // what of it the operation is to remove
+  Region forbidden;  // where no centre may go: the part, and shank and holder against the stock left above
+  ClearingLevel clear;
+};
+
+// A later setup's main pass targets the stock the in-process model proves, which leaves near the part (within a cell
+// of it, with the allowance and the model's film) a remnant that a level above does not take and a level below, its
+// own stock proven beside it, sweeps under: its flutes would cut it deeper than the step-down. So, bottom up, each
+// level's centre takes in those of the levels below that lie within `band` of its forbidden region (where that
+// remnant is) and whose disc would meet stock in its slab; never into the forbidden region nor the part's shadow.
+// The columns stay unproven elsewhere (film on faces cut far from the part): such levels prove their links and
+// descents by the stock model (ClearingLevel::column_clear and descents_clear false).
+void nestCentres(std::vector<LevelDraft>& drafts, const ShadowStack& shadows, double r, double allowance,
+                 double band, RoughingOperation& op) {
+  Region below;  // the centres of the levels below
+  for (auto it = drafts.rbegin(); it != drafts.rend(); ++it) {
+    ClearingLevel& clear = it->clear;
+    if (!regionEmpty(below)) {
+      Region add = intersect(below, offsetRegion(it->stock, r + kAirGapMm));
+      if (!regionEmpty(add)) add = subtract(intersect(add, offsetRegion(it->forbidden, band)), it->forbidden);
+      if (!regionEmpty(add) && !regionEmpty(intersect(add, shadows.at(clear.z)))) {
+        ++op.direct_levels;
+        add = subtract(add, offsetRegion(shadows.at(clear.z), r + allowance));
+      }
+      if (!regionEmpty(add)) clear.centre = dropSlivers(unite(clear.centre, add), kCentreSliverMm2);
+    }
+    below = unite(below, clear.centre);
+  }
 }
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
@@ -211,7 +247,10 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
   ForbiddenRegion forbidden_region(shadows, r + allowance, zones, options.clearing.holder_margin, true);
   ForbiddenRegion part_with_allowance(shadows, allowance, {}, 0, false);  // a rest pass's target: the stock beyond it
   std::vector<SlabState> slabs;
-  slabs.reserve(levels.size());  // left_above points into it
+  std::vector<LevelDraft> drafts;
+  drafts.reserve(levels.size());
+  std::vector<Region> drafts_left;  // the stock each level leaves by its draft's centre
+  drafts_left.reserve(levels.size());  // left_above points into it
   std::vector<StockLeft> left_above;
   std::vector<Region> in_process_slabs;  // what earlier setups left in each slab: all that may be there
   std::vector<Region> in_process_proven;  // what the model proves is there: to be cut
@@ -257,7 +296,8 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
     ClearingLevel clear;
     clear.z = z;
     clear.top = top;
-    clear.column_clear = before == nullptr;
+    clear.column_clear = before == nullptr && in_process == nullptr;
+    clear.descents_clear = in_process == nullptr;
     const double beyond = before ? kRestCentreBeyondStockMm : kCentreBeyondStockMm;
     if (!regionEmpty(target))
       clear.centre = dropSlivers(subtract(offsetRegion(target, r + beyond), forbidden), kCentreSliverMm2);
@@ -270,6 +310,19 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
     }
     if (before && options.rest.least_target_mm2 > 0)  // only where its sweep meets stock it is to remove
       clear.centre = piecesReaching(clear.centre, target, r - kClearedInsetMm, options.rest.least_target_mm2);
+    // The levels below see the stock this one leaves (conservative: nesting only adds to its centre).
+    drafts_left.push_back(subtract(stock, offsetRegion(clear.centre, r - kClearedInsetMm)));
+    left_above.push_back({top, &drafts_left.back()});
+    drafts.push_back({stock, proven, forbidden, std::move(clear)});
+    top = z;
+  }
+  if (in_process && !before) nestCentres(drafts, shadows, r, allowance, kNestBandCells * in_process->cell(), op);
+  for (std::size_t index = 0; index < drafts.size(); ++index) {
+    LevelDraft& draft = drafts[index];
+    RoughingLevel& level = levels[index];
+    ClearingLevel& clear = draft.clear;
+    const Region& stock = draft.stock;
+    const double z = clear.z, top = clear.top;
     clear.stock_reach = offsetRegion(stock, r + kAirGapMm);
     clear.air = subtract(clear.centre, clear.stock_reach);
 
@@ -294,13 +347,11 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
       planned.slabs.push_back(slab);
       planned.swept.push_back(swept);
     }
-    op.planned_removal_mm3 += regionArea(intersect(proven, swept)) * (top - z);  // not the model's film
+    op.planned_removal_mm3 += regionArea(intersect(draft.proven, swept)) * (top - z);  // not the model's film
     level.remaining_mm2 = regionArea(slab.remaining);
     level.rings = static_cast<int>(clear.centre.size());
     slabs.push_back(std::move(slab));
-    left_above.push_back({top, &slabs.back().remaining});
     planned.levels.push_back(std::move(clear));
-    top = z;
   }
   OperationMovesOptions moves_options;
   moves_options.clearing = clearing;
