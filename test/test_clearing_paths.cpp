@@ -192,6 +192,21 @@ TEST(ClearingPaths, EmptyRegionGivesNoMoves) {
   EXPECT_EQ(stats.passes, 0);
 }
 
+// A level's own step-over (a thin slab's wider one) replaces the options': lines that far apart, every point of the
+// region within half of it of a feed.
+TEST(ClearingPaths, ALevelsOwnStepoverSetsItsLines) {
+  ClearingLevel level = levelOf(region({rectangle(0, 0, 40, 20)}));
+  level.stepover = 10;
+  ClearingStats stats;
+  const std::vector<ClearingPoint> moves = clearChecked(level, optionsOf(4, 0, false), stats);
+  EXPECT_LE(worstCoverage(level.centre, moves, level.z), 5 + 1e-6);
+  EXPECT_GT(worstCoverage(level.centre, moves, level.z), 2 + 1e-6);
+  std::set<long> lines;  // heights of the long feeds, in um
+  for (const Segment& s : feedsAtLevel(moves, level.z))
+    if (std::abs(s.b.x() - s.a.x()) > 30) lines.insert(std::lround(s.a.y() * 1000));
+  EXPECT_EQ(lines, (std::set<long>{5000, 15000}));
+}
+
 TEST(ClearingPaths, RectangleIsCoveredByCentredLinesInOnePass) {
   const ClearingLevel level = levelOf(region({rectangle(0, 0, 40, 20)}));
   ClearingStats stats;

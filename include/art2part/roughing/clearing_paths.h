@@ -38,6 +38,8 @@ struct ClearingLevel {
   double z = 0;          // the level: tool tip height of every cutting move
   double top = 0;        // the top of the slab: above it, every point of `centre` has been cleared already
   Region centre;         // where the tool centre may go at this level and everything in it is to be cleared
+  double stepover = 0;   // mm between passes at this level (a thin slab's wider one); 0: ClearingOptions::stepover
+  double engagement_deg = 0;  // engagement clearing's limit at this level (a thin slab's wider one); 0: its options'
   Region air;            // where the tool centre may plunge straight down (its disc meets no stock in the slab)
   Region stock_reach;    // where the tool centre's disc meets stock in the slab, inside `centre` or not (air is
                          // `centre` less this); engagement clearing only (the material round the region)

@@ -365,11 +365,13 @@ void cutContours(const std::vector<RegionPiece>& pieces, const ClearingOptions& 
 
 }  // namespace
 
-std::vector<ClearingPoint> clearLevel(const ClearingLevel& level, const ClearingOptions& options,
+std::vector<ClearingPoint> clearLevel(const ClearingLevel& level, const ClearingOptions& level_options,
                                       ClearingStats* stats) {
   ClearingStats local;
   ClearingStats& counts = stats ? *stats : local;
   if (regionEmpty(level.centre)) return {};
+  ClearingOptions options = level_options;
+  if (level.stepover > 0) options.stepover = level.stepover;
   const std::vector<RegionPiece> pieces = regionPieces(level.centre);
   PathWriter writer(level, options, counts);
   cutZigzag(pieces, level, options, writer, counts);

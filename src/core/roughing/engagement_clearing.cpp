@@ -331,7 +331,9 @@ std::vector<ClearingPoint> clearLevelByEngagement(const ClearingLevel& level, co
   ClearingStats local;
   ClearingStats& counts = stats ? *stats : local;
   if (regionEmpty(level.centre)) return {};
-  return FrontCutter(level, options, engagement, counts).cut();
+  EngagementOptions at_level = engagement;
+  if (level.engagement_deg > 0) at_level.max_engagement_deg = level.engagement_deg;
+  return FrontCutter(level, options, at_level, counts).cut();
 }
 
 }  // namespace art2part

@@ -157,6 +157,7 @@ void clusterByCluster(const OperationLevels& levels, const Tool& tool, const Ope
         clear.top = levels.levels[i].top;
         clear.column_clear = levels.levels[i].column_clear;
         clear.descents_clear = levels.levels[i].descents_clear;
+        clear.stepover = levels.levels[i].stepover;
         clear.centre = pieces;
         clear.air = intersect(levels.levels[i].air, pieces);
         clear.stock_reach = levels.levels[i].stock_reach;  // other clusters' stock too: material to go round

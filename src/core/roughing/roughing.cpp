@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "art2part/roughing/engagement_clearing.h"
 #include "art2part/roughing/forbidden_region.h"
 #include "art2part/roughing/in_process_stock.h"
 #include "art2part/roughing/operation_moves.h"
@@ -28,6 +29,10 @@ constexpr double kRestTargetSliverMm2 = 0.01;  // and a piece of it smaller than
 constexpr double kCentreSliverMm2 = 0.001;     // centre regions smaller than this are dropped
 constexpr double kAirGapMm = 0.1;              // centres farther than radius + this from the stock cut air
 constexpr double kClearedInsetMm = 0.05;       // the cleared area: centres grown by the radius less this
+// A slab thinner than the tool's max_stepdown is cleared with the step-over (zig-zag) or the radial engagement
+// (engagement clearing) grown in proportion: the same ae x ap as the library's cutting data (a shop faces a thin
+// layer with a wide cutter path), up to this share of the diameter.
+constexpr double kThinSlabStepoverRatio = 0.75;
 // nestCentres: a later setup's level takes in the centres below within this many in-process cells of its forbidden
 // region (the remnant within a cell of the part that the proof leaves, its film and the proof's own cell).
 constexpr double kNestBandCells = 3;
@@ -72,6 +77,21 @@ void nestCentres(std::vector<LevelDraft>& drafts, const ShadowStack& shadows, do
     }
     below = unite(below, clear.centre);
   }
+}
+
+// The step-over for a slab `thickness` deep, given the operation's `stepover` at the tool's max_stepdown: wider in
+// proportion for a thinner slab, up to kThinSlabStepoverRatio diameters (never narrower than `stepover`).
+double slabStepover(const Tool& tool, double stepover, double thickness) {
+  if (!(tool.max_stepdown > 0) || !(thickness > 0) || thickness >= tool.max_stepdown) return stepover;
+  return std::max(stepover, std::min(stepover * tool.max_stepdown / thickness, kThinSlabStepoverRatio * tool.diameter));
+}
+
+// The engagement limit for a slab `thickness` deep: the radial engagement of the tool's max_engagement_deg on a
+// straight wall, grown as slabStepover grows a step-over.
+double slabEngagement(const Tool& tool, double thickness) {
+  const double r = tool.diameter / 2, ae = engagementStepover(r, 0, tool.max_engagement_deg);
+  const double grown = std::min(slabStepover(tool, ae, thickness), 2 * r);
+  return std::acos(1 - grown / r) * 180 / kPi;
 }
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
@@ -298,6 +318,8 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
     clear.top = top;
     clear.column_clear = before == nullptr && in_process == nullptr;
     clear.descents_clear = in_process == nullptr;
+    if (!by_engagement) clear.stepover = slabStepover(tool, clearing.stepover, top - z);
+    else clear.engagement_deg = slabEngagement(tool, top - z);
     const double beyond = before ? kRestCentreBeyondStockMm : kCentreBeyondStockMm;
     if (!regionEmpty(target))
       clear.centre = dropSlivers(subtract(offsetRegion(target, r + beyond), forbidden), kCentreSliverMm2);
