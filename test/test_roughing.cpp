@@ -536,7 +536,7 @@ TEST(Roughing, StayDownLinksKeepTheToolLowWithoutCollisions) {
 // Constant-engagement clearing (issue 19 item 3) for the main passes against zig-zag, on the same setups: by the
 // simulation it neither gouges nor collides; the main passes take the library's high-efficiency cutters at their own
 // step-down and run in less estimated time, step-up pass included (featuretype at level-2 setups: 1,053 s of zig-zag
-// main passes against 852 s, both with thin slabs' wider step-over and engagement; all operations 2,111 / 4,542 s).
+// main passes against 671 s, both with thin slabs' wider step-over and engagement; all operations 2,111 / 4,360 s).
 // Not asserted, printed: the stock left after the rest
 // passes (36,017 mm3 zig-zag, 34,929 mm3 adaptive; 36,917 mm3 before the step-up pass: the main pass's slabs are up
 // to 40 mm thick and leave stairs the 2 mm rest levels did not all take).

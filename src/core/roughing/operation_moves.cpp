@@ -152,15 +152,11 @@ void clusterByCluster(const OperationLevels& levels, const Tool& tool, const Ope
     for (std::size_t i = 0; i < levels.levels.size(); ++i) {
       const Region& pieces = clusters[next][i];
       if (!pieces.empty()) {
-        ClearingLevel clear;
-        clear.z = levels.levels[i].z;
-        clear.top = levels.levels[i].top;
-        clear.column_clear = levels.levels[i].column_clear;
-        clear.descents_clear = levels.levels[i].descents_clear;
-        clear.stepover = levels.levels[i].stepover;
+        // The level as planned (its flags, step-over, engagement, stock_reach: other clusters' stock too, material
+        // to go round), narrowed to this cluster's pieces.
+        ClearingLevel clear = levels.levels[i];
         clear.centre = pieces;
         clear.air = intersect(levels.levels[i].air, pieces);
-        clear.stock_reach = levels.levels[i].stock_reach;  // other clusters' stock too: material to go round
         clear.cleared = cleared;
         clear.clear_height = [&link_clearance](const Point2& a, const Point2& b, double lowest, double ceiling) {
           return link_clearance.lowestClear(a, b, lowest, ceiling);
