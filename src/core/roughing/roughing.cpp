@@ -52,6 +52,7 @@ struct LevelDraft {
   Region proven;     // what of it the operation is to remove
   Region forbidden;  // where no centre may go: the part, and shank and holder against the stock left above
   ClearingLevel clear;
+  Region cleared;    // what its centres clear: clear.centre grown by the radius less kClearedInsetMm
 };
 
 // A later setup's main pass targets the stock the in-process model proves, which leaves near the part (within a cell
@@ -73,7 +74,10 @@ void nestCentres(std::vector<LevelDraft>& drafts, const ShadowStack& shadows, do
         ++op.direct_levels;
         add = subtract(add, offsetRegion(shadows.at(clear.z), r + allowance));
       }
-      if (!regionEmpty(add)) clear.centre = dropSlivers(unite(clear.centre, add), kCentreSliverMm2);
+      if (!regionEmpty(add)) {
+        clear.centre = dropSlivers(unite(clear.centre, add), kCentreSliverMm2);
+        it->cleared = offsetRegion(clear.centre, r - kClearedInsetMm);
+      }
     }
     below = unite(below, clear.centre);
   }
@@ -333,9 +337,10 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
     if (before && options.rest.least_target_mm2 > 0)  // only where its sweep meets stock it is to remove
       clear.centre = piecesReaching(clear.centre, target, r - kClearedInsetMm, options.rest.least_target_mm2);
     // The levels below see the stock this one leaves (conservative: nesting only adds to its centre).
-    drafts_left.push_back(subtract(stock, offsetRegion(clear.centre, r - kClearedInsetMm)));
+    Region cleared = offsetRegion(clear.centre, r - kClearedInsetMm);
+    drafts_left.push_back(subtract(stock, cleared));
     left_above.push_back({top, &drafts_left.back()});
-    drafts.push_back({stock, proven, forbidden, std::move(clear)});
+    drafts.push_back({stock, proven, forbidden, std::move(clear), std::move(cleared)});
     top = z;
   }
   if (in_process && !before) nestCentres(drafts, shadows, r, allowance, kNestBandCells * in_process->cell(), op);
@@ -348,7 +353,7 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
     clear.stock_reach = offsetRegion(stock, r + kAirGapMm);
     clear.air = subtract(clear.centre, clear.stock_reach);
 
-    const Region cleared = offsetRegion(clear.centre, r - kClearedInsetMm);
+    const Region& cleared = draft.cleared;
     SlabState slab{z, top, subtract(stock, cleared)};
     level.cleared_mm2 = regionArea(intersect(stock, cleared));
     // What the tool can take: its whole disc round every centre point, over the slab (links, ramps and feeds stay in
