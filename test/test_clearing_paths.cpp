@@ -537,27 +537,33 @@ TEST(ClearingPaths, DescentsNotKnownClearRapidOnlyDownToWhatTheModelProves) {
 
 namespace {
 
-// Brute force: the tool at `height` over points of a-b every 0.05 mm, its radius every 0.5 mm of height up to its
-// holder's top (the spindle side above it as wide as the holder), against each slab's stock grown by that radius and
-// the margin (none for a radius no wider than the cutter's: LinkClearance's rule) and `slack`.
+// Brute force: the tool at `height` over points of a-b every 0.05 mm, its radius every 0.5 mm of height (and at the
+// ends) up to its holder's top (the spindle side above it as wide as the holder), against each slab's stock standing
+// `margin` higher and grown by that radius and the margin (none for a radius no wider than the cutter's:
+// LinkClearance's rule) and `slack`.
 bool clearByProbing(const Tool& tool, const std::vector<SlabState>& slabs, const Point2& a, const Point2& b,
                     double height, double margin, double slack) {
   const int samples = 1 + static_cast<int>((b - a).norm() / 0.05);
-  for (const SlabState& slab : slabs)
-    for (double h = std::max(0.0, slab.z - height); h <= slab.top - height; h += 0.5) {
-      const double radius = h > toolLength(tool) ? holderTopRadius(tool) : toolRadiusAt(tool, h);
+  for (const SlabState& slab : slabs) {
+    const double from = std::max(0.0, slab.z - height), to = slab.top + margin - height;
+    for (double h = from; h <= to + 0.5; h += 0.5) {
+      const double at = std::min(h, to);
+      if (at < from) break;
+      const double radius = at > toolLength(tool) ? holderTopRadius(tool) : toolRadiusAt(tool, at);
       if (radius <= 0) continue;
       const Region grown = offsetRegion(slab.remaining, radius + (radius <= tool.diameter / 2 ? 0 : margin) + slack);
       for (int i = 0; i <= samples; ++i)
         if (regionContains(grown, a + (b - a) * (static_cast<double>(i) / samples))) return false;
     }
+  }
   return true;
 }
 
 }  // namespace
 
 // LinkClearance against probing: the height it gives is clear by probing (with 0.05 mm less margin, for the probe's
-// spacing); where probing finds the lowest height clear with 0.3 mm more margin, it gives that height.
+// spacing) and 0.2 mm lower is not (with 0.05 mm more, under the ceiling); where probing finds the lowest height clear
+// with 0.3 mm more margin, it gives that height.
 TEST(LinkClearance, HeightsAreClearByProbingAndNotNeedlesslyHigh) {
   Tool tool;
   tool.id = "flat10";
@@ -569,7 +575,7 @@ TEST(LinkClearance, HeightsAreClearByProbingAndNotNeedlesslyHigh) {
   const double margin = 0.5, ceiling = 60;
   std::mt19937 random(5);
   std::uniform_real_distribution<double> unit(0, 1);
-  int raised = 0, lowest_kept = 0;
+  int raised = 0, lowest_kept = 0, lowest_proven = 0;
   for (int trial = 0; trial < 30; ++trial) {
     SCOPED_TRACE(trial);
     // Slabs 4 mm thick from z = 0 up to 20: a few blocks of stock each, fewer higher up.
@@ -590,6 +596,10 @@ TEST(LinkClearance, HeightsAreClearByProbingAndNotNeedlesslyHigh) {
     if (height < ceiling) {
       EXPECT_TRUE(clearByProbing(tool, slabs, a, b, height, margin, -0.05)) << "height " << height;
     }
+    if (height > lowest + 0.2 && height < ceiling) {  // and no lower: 0.2 mm under it probing finds stock within a zone's reach
+      EXPECT_FALSE(clearByProbing(tool, slabs, a, b, height - 0.2, margin, 0.05)) << "height " << height;
+      ++lowest_proven;
+    }
     if (clearByProbing(tool, slabs, a, b, lowest, margin, 0.3)) {
       EXPECT_EQ(height, lowest);
       ++lowest_kept;
@@ -598,6 +608,7 @@ TEST(LinkClearance, HeightsAreClearByProbingAndNotNeedlesslyHigh) {
   }
   EXPECT_GE(raised, 3);       // the random cases include hops over stock
   EXPECT_GE(lowest_kept, 3);  // and ways clear at the lowest height
+  EXPECT_GE(lowest_proven, 3);
 }
 
 // Rest passes cut cluster after cluster (operation_moves.h): that order is sound only if pieces of different clusters

@@ -5,11 +5,12 @@
 // the tool may pass over cleared pockets, over the part's own air and outside the block.
 // Sound because a finished slab's `remaining` holds everything left in it (the part's section included) and holds
 // only less as the operation goes on; a segment is clear of a slab when every body zone overlapping the slab's
-// heights keeps its radius plus the margin from every point of `remaining`. Slabs not finished are never crossed:
-// candidates start at the caller's lowest height, at or above the current slab's top.
-// The flutes, and a shank no wider than them, keep no margin, and `remaining` loses the whole disc the cutter swept
-// round every centre point (the slab's own record keeps a band kClearedInsetMm wide of it): otherwise no link could
-// pass where the tool has just cut beside a wall, a tool radius from the stock left on the wall.
+// heights, or coming within the margin over its top, keeps its radius plus the margin from every point of
+// `remaining`. Slabs not finished are never crossed: heights start at the caller's lowest, at or above the current
+// slab's top. Every zone keeps the margin over the stock's top; beside it the flutes, and a shank no wider than them,
+// keep none, and `remaining` loses the whole disc the cutter swept round every centre point (the slab's own record
+// keeps a band kClearedInsetMm wide of it): otherwise no link could pass where the tool has just cut beside a wall,
+// a tool radius from the stock left on the wall.
 #pragma once
 
 #include <vector>
@@ -31,11 +32,9 @@ class LinkClearance {
   void addSlab(const SlabState& slab, const Region& swept);
 
   // The lowest height in [lowest, ceiling) at which the tool tip may go straight from `a` to `b` with every body zone
-  // clear of every finished slab, or `ceiling` when none is proven. Tries `lowest` and the heights where a zone's
-  // bottom clears a slab's top, at most kMostTries of them.
+  // clear of every finished slab, or `ceiling` when none is: each slab within a zone's reach of the segment lifts the
+  // lowest such zone, and with it every zone above, `margin` over the slab's top.
   double lowestClear(const Point2& a, const Point2& b, double lowest, double ceiling) const;
-
-  static constexpr int kMostTries = 12;
 
  private:
   struct Zone {
@@ -51,8 +50,11 @@ class LinkClearance {
     std::vector<Edge> edges;
   };
   bool clearAt(const Point2& a, const Point2& b, double height) const;
-  static bool segmentClearOf(const Slab& slab, const Point2& a, const Point2& b, double radius);
+  // The distance from the segment to the slab's stock (0 where it enters it); farther than `beyond`: any larger value.
+  static double distanceTo(const Slab& slab, const Point2& a, const Point2& b, double beyond);
 
+  double margin_ = 0;  // kept over a slab's top by every zone, beside it by the zones wider than the cutter
+  double widest_ = 0;  // the widest zone's radius, margin included
   std::vector<Zone> zones_;
   std::vector<Slab> slabs_;
 };

@@ -11,6 +11,7 @@ namespace {
 
 constexpr double kAboveHolder = 1e9;  // the spindle side above the holder: as wide as the holder's widest step
 constexpr double kGridSlack = 1e-3;   // mm: a centre point lies a tool radius from its swept disc's rim, to rounding
+constexpr double kFar = 1e300;        // no stock within reach
 
 double segmentDistance(const Point2& a, const Point2& b, const Point2& p, const Point2& q) {
   auto pointToSegment = [](const Point2& x, const Point2& s0, const Point2& s1) {
@@ -26,7 +27,7 @@ double segmentDistance(const Point2& a, const Point2& b, const Point2& p, const 
 
 }  // namespace
 
-LinkClearance::LinkClearance(const Tool& tool, double margin) {
+LinkClearance::LinkClearance(const Tool& tool, double margin) : margin_(margin) {
   const double cutter = tool.diameter / 2;
   auto withMargin = [&](double radius) { return radius <= cutter ? radius - kGridSlack : radius + margin; };
   zones_.push_back({0, tool.flute_length, withMargin(cutter)});
@@ -37,6 +38,7 @@ LinkClearance::LinkClearance(const Tool& tool, double margin) {
     widest = std::max(widest, zone.radius);
   }
   zones_.push_back({top, kAboveHolder, withMargin(widest)});
+  widest_ = zones_.back().radius;
 }
 
 void LinkClearance::addSlab(const SlabState& slab, const Region& swept) {
@@ -55,42 +57,46 @@ void LinkClearance::addSlab(const SlabState& slab, const Region& swept) {
   slabs_.push_back(std::move(s));
 }
 
-bool LinkClearance::segmentClearOf(const Slab& slab, const Point2& a, const Point2& b, double radius) {
-  if (slab.edges.empty()) return true;
-  const Point2 lo = a.cwiseMin(b) - Point2::Constant(radius), hi = a.cwiseMax(b) + Point2::Constant(radius);
-  if ((lo.array() > slab.hi.array()).any() || (hi.array() < slab.lo.array()).any()) return true;
-  if (regionContains(slab.remaining, a) || regionContains(slab.remaining, b)) return false;
+double LinkClearance::distanceTo(const Slab& slab, const Point2& a, const Point2& b, double beyond) {
+  if (slab.edges.empty()) return kFar;
+  const Point2 lo = a.cwiseMin(b) - Point2::Constant(beyond), hi = a.cwiseMax(b) + Point2::Constant(beyond);
+  if ((lo.array() > slab.hi.array()).any() || (hi.array() < slab.lo.array()).any()) return kFar;
+  if (regionContains(slab.remaining, a) || regionContains(slab.remaining, b)) return 0;
+  double nearest = kFar;
   for (const Edge& e : slab.edges) {
     if (std::max(e.a.x(), e.b.x()) < lo.x() || std::min(e.a.x(), e.b.x()) > hi.x() ||
         std::max(e.a.y(), e.b.y()) < lo.y() || std::min(e.a.y(), e.b.y()) > hi.y())
       continue;
-    if (segmentDistance(a, b, e.a, e.b) < radius) return false;
+    nearest = std::min(nearest, segmentDistance(a, b, e.a, e.b));
+    if (nearest == 0) break;
   }
-  return true;
+  return nearest;
 }
 
 bool LinkClearance::clearAt(const Point2& a, const Point2& b, double height) const {
   for (const Zone& zone : zones_)
     for (const Slab& slab : slabs_)
-      if (slab.top > height + zone.from && slab.z < height + zone.to &&
-          !segmentClearOf(slab, a, b, zone.radius))
+      if (slab.top + margin_ > height + zone.from && slab.z < height + zone.to &&
+          distanceTo(slab, a, b, zone.radius) < zone.radius)
         return false;
   return true;
 }
 
 double LinkClearance::lowestClear(const Point2& a, const Point2& b, double lowest, double ceiling) const {
-  std::vector<double> heights{lowest};
-  for (const Slab& slab : slabs_)
-    for (const Zone& zone : zones_) {
-      const double h = slab.top - zone.from + 1e-6;  // the zone's bottom just above the slab
-      if (h > lowest && h < ceiling) heights.push_back(h);
-    }
-  std::sort(heights.begin(), heights.end());
-  heights.erase(std::unique(heights.begin(), heights.end()), heights.end());
-  if (heights.size() > static_cast<std::size_t>(kMostTries)) heights.resize(kMostTries);
-  for (double h : heights)
-    if (h < ceiling && clearAt(a, b, h)) return h;
-  return ceiling;
+  // Each slab the body would meet sets a floor: the lowest zone whose radius reaches it must pass `margin_` over its
+  // top, and so must every zone above (they start higher). The zones below it do not reach it at any height.
+  double height = lowest;
+  for (const Slab& slab : slabs_) {
+    if (slab.top + margin_ <= height) continue;  // under the tip wherever the tool goes
+    const double distance = distanceTo(slab, a, b, widest_);
+    for (const Zone& zone : zones_)
+      if (distance < zone.radius) {
+        height = std::max(height, slab.top + margin_ - zone.from + 1e-6);
+        break;
+      }
+    if (height >= ceiling) return ceiling;
+  }
+  return clearAt(a, b, height) ? height : ceiling;
 }
 
 }  // namespace art2part
