@@ -63,9 +63,17 @@ double distanceToSegment(const Point2& p, const Segment& s) {
   return (s.a + t * d - p).norm();
 }
 
-// The largest distance from a point of a `grid` mm lattice in the region to the nearest feed at the level.
-double worstCoverage(const Region& centre, const std::vector<ClearingPoint>& moves, double z, double grid = 0.5) {
-  const std::vector<Segment> feeds = feedsAtLevel(moves, z);
+// The largest distance from a point of a `grid` mm lattice in the region to the nearest feed at the level, or to an
+// edge of the region's rings lying in `air` (where the contour pass has nothing to cut: clearing_paths.h).
+double worstCoverage(const Region& centre, const std::vector<ClearingPoint>& moves, double z, double grid = 0.5,
+                     const Region& air = {}) {
+  std::vector<Segment> feeds = feedsAtLevel(moves, z);
+  if (!regionEmpty(air))
+    for (const Ring& ring : regionRings(centre))
+      for (std::size_t i = 0; i < ring.size(); ++i) {
+        const Point2& next = ring[(i + 1) % ring.size()];
+        if (segmentInside(air, ring[i], next)) feeds.push_back({ring[i], next});
+      }
   Point2 lo(1e9, 1e9), hi(-1e9, -1e9);
   for (const Ring& ring : regionRings(centre))
     for (const Point2& p : ring) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
@@ -420,8 +428,38 @@ TEST(ClearingPaths, LargeRegionWithIslandsIsQuick) {
               clearingLength(moves, false), stats.passes, stats.contours, stats.ramps, stats.plunges_in_air,
               stats.plunges_into_stock, stats.retracts);
   EXPECT_LT(ms, 100);  // aim: well under 50 ms with -O2
-  EXPECT_LE(worstCoverage(level.centre, moves, level.z, 2.5), 1 + 1e-3);
+  EXPECT_LE(worstCoverage(level.centre, moves, level.z, 2.5, level.air), 1 + 1e-3);
   EXPECT_EQ(stats.plunges_into_stock, 0);
+}
+
+// The contour pass follows no ring edge in air: round a block the centre region's outer ring runs a tool radius and
+// 1 mm beyond the stock, and a lap there cuts nothing. Without it every point of the stock (the block less the part's
+// disc) is still within the tool radius of a feed, and the cut is shorter by about that ring's length.
+TEST(ClearingPaths, ContoursSkipRingEdgesInAirAndStillSweepAllTheStock) {
+  const double r = 5;
+  const Region part = region({circle({30, 20}, 8, 64)});
+  const Region stock = subtract(region({rectangle(0, 0, 60, 40)}), part);
+  const Region centre = subtract(offsetRegion(stock, r + 1), offsetRegion(part, r));
+  const ClearingLevel level = levelOf(centre, subtract(centre, offsetRegion(stock, r + 0.1)));
+  ClearingStats stats, all_stats;
+  const std::vector<ClearingPoint> moves = clearChecked(level, optionsOf(4), stats);
+  const std::vector<ClearingPoint> all = clearChecked(levelOf(centre), optionsOf(4), all_stats);
+  const std::vector<Segment> feeds = feedsAtLevel(moves, level.z);
+  int stock_points = 0;
+  for (double x = 0.25; x < 60; x += 0.5)
+    for (double y = 0.25; y < 40; y += 0.5) {
+      const Point2 p(x, y);
+      if (!regionContains(stock, p)) continue;
+      ++stock_points;
+      double nearest = 1e9;
+      for (const Segment& s : feeds) nearest = std::min(nearest, distanceToSegment(p, s));
+      EXPECT_LE(nearest, r) << "stock at " << x << ", " << y << " not swept";
+    }
+  EXPECT_GT(stock_points, 8000);
+  const double outer_ring = 2 * (60 + 40) + 2 * kPi * (r + 1);
+  EXPECT_LT(clearingLength(moves, true), clearingLength(all, true) - 0.9 * outer_ring);
+  EXPECT_EQ(stats.plunges_into_stock, 0);
+  EXPECT_EQ(stats.contours, 1);  // the ring round the part only
 }
 
 TEST(ClearingPaths, RandomRegionsAreSound) {
@@ -451,7 +489,7 @@ TEST(ClearingPaths, RandomRegionsAreSound) {
     ClearingStats stats;
     const std::vector<ClearingPoint> moves = clearChecked(level, options, stats);
     if (options.contour_pass) {
-      EXPECT_LE(worstCoverage(centre, moves, level.z, 1.0), options.stepover / 2 + 0.06);
+      EXPECT_LE(worstCoverage(centre, moves, level.z, 1.0, level.air), options.stepover / 2 + 0.06);
     }
   }
 }

@@ -26,9 +26,10 @@ struct ClearingPoint {
 
 // A level of the same operation, cleared before this one: once its moves are done the tool may stand at any height
 // from `z` up over any point of `centre` without meeting stock or part. Why: the column over every point of a centre
-// region is clear above the slab's top (roughing.h), and with the contour pass the moves sweep every point within the
-// tool radius of `centre` down to `z` (a point within r of p in centre is within stepover/2 < r of a feed, or within r
-// of the ring that the segment from p to it crosses, which the contour follows).
+// region is clear above the slab's top (roughing.h), and with the contour pass the moves sweep every point of stock
+// within the tool radius of `centre` down to `z` (such a point, within r of p in centre, is within stepover/2 < r of a
+// feed, or within r of the ring that the segment from p to it crosses, which the contour follows wherever a point
+// within r of it may be stock: not in `air`).
 struct ClearedLevel {
   double z = 0;
   Region centre;
@@ -95,8 +96,11 @@ struct ClearingOptions {
 // plunges_into_stock), stopping where it reaches z and feeding back to the start. Then, if asked, each ring of
 // `centre` (perimeter at least min_segment), nearest first, followed once at z from its vertex nearest the tool:
 // joined by a feed where the straight way lies in `centre`, else entered by a ramp round the ring itself, the lap
-// then running from where the ramp reached z back to there. With the contour pass every point of `centre` lies within
-// stepover/2 (+ min_segment) of a feed at z.
+// then running from where the ramp reached z back to there. The edges of a ring that lie in `air` are not followed
+// (the tool's disc meets no stock there): the rest of it is cut as open stretches in the ring's direction, each from
+// an air vertex (a plunge). With the contour pass every point of `centre` lies within stepover/2 (+ min_segment) of a
+// feed at z or of a ring edge in air, so every point of stock within the tool radius of `centre` is swept: a point
+// within r of a ring edge in air is no stock.
 // Pieces are taken nearest first, a piece's passes nearest first from either end (an end in air first if only one
 // is), each reached as `stay_down` says. Without stay_down the first point is a rapid at the clearance plane, the
 // last a retract to it and sideways rapids are at the clearance plane only; with it, sideways rapids also run at the

@@ -337,27 +337,87 @@ std::pair<std::size_t, double> nearestVertex(const Polyline& ring, const Point2&
   return best;
 }
 
-// Every ring followed once at the level, nearest first; joined by a feed where the straight way is inside the region.
-void cutContours(const std::vector<RegionPiece>& pieces, const ClearingOptions& options, PathWriter& writer,
-                 ClearingStats& stats) {
-  std::vector<Polyline> rings;
+// A stretch of a ring the contour pass follows: the whole ring (closed), or a run of its edges (open, in the ring's
+// direction).
+struct RingStretch {
+  Polyline path;
+  bool closed = true;
+};
+
+// The stretches of `ring` to follow: all of it but the edges lying in `air`, where the tool's disc meets no stock
+// and a lap would cut nothing. An open stretch runs from the air vertex before its first edge to the one after its
+// last, so it starts where the tool may plunge.
+std::vector<RingStretch> ringStretches(const Polyline& ring, const Region& air, const RegionLocator& in_air) {
+  const std::size_t n = ring.size();
+  std::vector<char> air_edge(n, 0);
+  std::size_t air_edges = 0;
+  if (!regionEmpty(air)) {
+    std::vector<char> air_vertex(n);
+    for (std::size_t i = 0; i < n; ++i) air_vertex[i] = in_air.contains(ring[i]);
+    Point2 lo = ring[0], hi = ring[0];
+    for (const Point2& p : ring) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    const Region near = ringsMeeting(air, lo, hi);
+    for (std::size_t i = 0; i < n; ++i)
+      if (air_vertex[i] && air_vertex[(i + 1) % n] && segmentInside(near, ring[i], ring[(i + 1) % n]))
+        air_edge[i] = 1, ++air_edges;
+  }
+  if (air_edges == 0) return {{ring, true}};
+  std::vector<RingStretch> stretches;
+  if (air_edges == n) return stretches;
+  const std::size_t first_air = std::find(air_edge.begin(), air_edge.end(), 1) - air_edge.begin();
+  RingStretch run{{}, false};
+  for (std::size_t k = 1; k <= n; ++k) {  // edges from the one after an air edge, once round
+    const std::size_t e = (first_air + k) % n;
+    if (air_edge[e]) {
+      if (!run.path.empty()) stretches.push_back(std::move(run)), run = {{}, false};
+      continue;
+    }
+    if (run.path.empty()) run.path.push_back(ring[e]);
+    run.path.push_back(ring[(e + 1) % n]);
+  }
+  if (!run.path.empty()) stretches.push_back(std::move(run));
+  return stretches;
+}
+
+// Where a stretch starts nearest `from`: a closed ring at its nearest vertex, an open one at its first point.
+std::pair<std::size_t, double> nearestStart(const RingStretch& stretch, const Point2& from) {
+  if (!stretch.closed) return {0, (stretch.path.front() - from).squaredNorm()};
+  return nearestVertex(stretch.path, from);
+}
+
+// Every ring followed once at the level, nearest first, but where it lies in air; joined by a feed where the straight
+// way is inside the region.
+void cutContours(const std::vector<RegionPiece>& pieces, const ClearingLevel& level, const ClearingOptions& options,
+                 PathWriter& writer, ClearingStats& stats) {
+  const RegionLocator in_air(level.air);
+  std::vector<RingStretch> stretches;
   for (const RegionPiece& piece : pieces)
     for (const Ring& ring : regionRings(piece.rings))
-      if (ring.size() >= 3 && ringPerimeter(ring) >= options.min_segment) rings.push_back(ring);
-  while (!rings.empty()) {
+      if (ring.size() >= 3 && ringPerimeter(ring) >= options.min_segment)
+        for (RingStretch& stretch : ringStretches(ring, level.air, in_air))
+          if (stretch.closed || pathLength(stretch.path) >= options.min_segment)
+            stretches.push_back(std::move(stretch));
+  while (!stretches.empty()) {
     std::size_t next = 0, start = 0;
     double nearest = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < rings.size() && writer.placed(); ++i) {
-      const std::pair<std::size_t, double> vertex = nearestVertex(rings[i], writer.at());
-      if (vertex.second < nearest) next = i, start = vertex.first, nearest = vertex.second;
+    for (std::size_t i = 0; i < stretches.size() && writer.placed(); ++i) {
+      const std::pair<std::size_t, double> at = nearestStart(stretches[i], writer.at());
+      if (at.second < nearest) next = i, start = at.first, nearest = at.second;
     }
-    Polyline ring = std::move(rings[next]);
-    rings.erase(rings.begin() + next);
-    std::rotate(ring.begin(), ring.begin() + start, ring.end());
-    std::pair<std::size_t, Point2> lap{ring.size() - 1, ring.front()};
-    if (!writer.linkTo(ring.front(), true, writer.entrySeconds(ring.front()))) lap = writer.enterRing(ring);
+    RingStretch stretch = std::move(stretches[next]);
+    stretches.erase(stretches.begin() + next);
+    Polyline& path = stretch.path;
+    if (!stretch.closed) {
+      if (!writer.linkTo(path.front(), true, writer.entrySeconds(path.front()))) writer.enterPass(path);
+      for (const Point2& p : path) writer.feed(p);
+      ++stats.contours;
+      continue;
+    }
+    std::rotate(path.begin(), path.begin() + start, path.end());
+    std::pair<std::size_t, Point2> lap{path.size() - 1, path.front()};
+    if (!writer.linkTo(path.front(), true, writer.entrySeconds(path.front()))) lap = writer.enterRing(path);
     // Once round at the level, from where the tool reached it back to there.
-    for (std::size_t k = 1; k <= ring.size(); ++k) writer.feed(ring[(lap.first + k) % ring.size()]);
+    for (std::size_t k = 1; k <= path.size(); ++k) writer.feed(path[(lap.first + k) % path.size()]);
     writer.feed(lap.second);
     ++stats.contours;
   }
@@ -375,7 +435,7 @@ std::vector<ClearingPoint> clearLevel(const ClearingLevel& level, const Clearing
   const std::vector<RegionPiece> pieces = regionPieces(level.centre);
   PathWriter writer(level, options, counts);
   cutZigzag(pieces, level, options, writer, counts);
-  if (options.contour_pass) cutContours(pieces, options, writer, counts);
+  if (options.contour_pass) cutContours(pieces, level, options, writer, counts);
   if (!options.stay_down) writer.retract();
   return writer.take();
 }
