@@ -13,11 +13,17 @@
 
 #include "art2part/kinematics/machine.h"
 #include "art2part/plan/plan_figures.h"
+#include "bench_main.h"
 
 using namespace art2part;
 
 namespace {
 
+const char* const kUsage =
+    "bench_cycle_time [PART ...] [--no-finish] [--adaptive] [--no-stay-down] [--no-reach]\n"
+    "  PART: a file name in shared/parts, or \"all\"; default featuretype.STEP\n"
+    "  --adaptive: constant-engagement main passes; --no-stay-down: every link over the clearance plane;\n"
+    "  --no-reach: no reach pass with the main tool's long twin; all as the CLI's\n";
 const std::string kParts = ART2PART_SHARED_PARTS;
 const std::string kConfig = std::string(ART2PART_SOURCE_DIR) + "/config";
 const char* kAll[] = {"nist_ctc_01_asme1_rd.stp", "nist_ctc_02_asme1_rc.stp", "ANC101.stp", "featuretype.STEP",
@@ -88,27 +94,31 @@ void benchPart(const std::string& name, const ToolLibrary& library, const Machin
               old_roughing + plan.finishing.seconds, old_roughing, plan.finishing.seconds);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  std::setvbuf(stdout, nullptr, _IOLBF, 0);
+int benchMain(const std::vector<std::string>& args) {
+  const BenchArgs a(args, {"no-finish", "adaptive", "no-stay-down", "no-reach"}, {});
   std::vector<std::string> parts;
-  bool finish = true;
-  RoughingOptions roughing;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--no-finish") finish = false;
-    else if (arg == "--adaptive") roughing.clearing.strategy = RoughingOptions::Clearing::Strategy::Engagement;
-    else if (arg == "--no-stay-down") roughing.clearing.stay_down = false;
-    else if (arg == "--no-reach") roughing.rest.reach = false;
-    else if (arg == "all") parts.assign(std::begin(kAll), std::end(kAll));
+  for (const std::string& arg : a.positional()) {
+    if (arg == "all") parts.assign(std::begin(kAll), std::end(kAll));
     else parts.push_back(arg);
   }
   if (parts.empty()) parts.push_back("featuretype.STEP");
+  for (const std::string& name : parts) requireFile(kParts + "/" + name);
+  const bool finish = !a.flag("no-finish");
+  RoughingOptions roughing;
+  if (a.flag("adaptive")) roughing.clearing.strategy = RoughingOptions::Clearing::Strategy::Engagement;
+  if (a.flag("no-stay-down")) roughing.clearing.stay_down = false;
+  if (a.flag("no-reach")) roughing.rest.reach = false;
   const ToolLibrary library = loadToolLibrary(kConfig + "/tools.yaml");
   const Machine machine = loadMachine(kConfig + "/machines/vmc_3axis.yaml");
   std::printf("cycle time on %s; bound = removed volume at the tool's library rate (max_stepdown x max_stepover x "
               "feed); ratio = time / bound\n", machine.name.c_str());
   for (const std::string& name : parts) benchPart(name, library, machine, finish, roughing);
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
+  return runBench(argc, argv, kUsage, benchMain);
 }

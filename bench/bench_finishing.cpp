@@ -15,7 +15,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <limits>
 #include <map>
 #include <set>
@@ -26,11 +25,14 @@
 #include "art2part/plan/plan_part.h"
 #include "art2part/simulation/scallop_probe.h"
 #include "art2part/simulation/surface_coverage.h"
+#include "bench_main.h"
 
 using namespace art2part;
 
 namespace {
 
+const char* const kUsage =
+    "bench_finishing [PART ...] [--level L] [--windows N]   (file names in shared/parts; default: all of them)\n";
 const std::string kParts = ART2PART_SHARED_PARTS;
 const std::string kTools = std::string(ART2PART_SOURCE_DIR) + "/config/tools.yaml";
 const char* kAll[] = {"featuretype.STEP", "ANC101.stp", "nist_ctc_01_asme1_rd.stp", "nist_ctc_02_asme1_rc.stp",
@@ -158,24 +160,24 @@ void bench(const std::string& name, int level, int windows) {
   }
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  std::vector<std::string> parts;
-  int level = 4, windows = 400;
-  for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--level") && i + 1 < argc) level = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--windows") && i + 1 < argc) windows = std::atoi(argv[++i]);
-    else parts.push_back(argv[i]);
-  }
+int benchMain(const std::vector<std::string>& args) {
+  const BenchArgs a(args, {}, {"level", "windows"});
+  const int level = atLeast(a.integer("level", 4), 0, "--level");
+  const int windows = atLeast(a.integer("windows", 400), 0, "--windows");
+  std::vector<std::string> parts = a.positional();
   if (parts.empty()) parts.assign(std::begin(kAll), std::end(kAll));
+  for (const std::string& name : parts) requireFile(kParts + "/" + name);
   std::printf("bench_finishing: whole plans at visibility level %d (issue 17's figures)\n", level);
   for (const std::string& name : parts) {
     try {
       bench(name, level, windows);
-    } catch (const std::exception& e) {
+    } catch (const std::exception& e) {  // one part's failure is its line of the report; the others still run
       std::printf("\n== %s: %s\n", name.c_str(), e.what());
     }
   }
   return 0;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return runBench(argc, argv, kUsage, benchMain); }

@@ -11,8 +11,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <ctime>
 #include <string>
 
@@ -21,11 +19,15 @@
 #include "art2part/simulation/scallop_probe.h"
 #include "art2part/simulation/stock.h"
 #include "art2part/simulation/surface_coverage.h"
+#include "bench_main.h"
 
 using namespace art2part;
 
 namespace {
 
+const char* const kUsage =
+    "bench_finishing_checks ctc01 [--threads N]\n"
+    "       bench_finishing_checks raster PART [--stepover S] [--threads N]   (PART a path)\n";
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDropResolution = 0.5;  // mm: the height map's lattice (CTC-02 at 0.1 mm would be 60 M rays)
 
@@ -239,29 +241,22 @@ int wholeRaster(const std::string& file, double stepover, int threads) {
   return 0;
 }
 
+int benchMain(const std::vector<std::string>& args) {
+  const BenchArgs a(args, {}, {"threads", "stepover"});
+  const std::vector<std::string>& p = a.positional(2);
+  const int threads = atLeast(a.integer("threads", 0), 0, "--threads");
+  const double stepover = positive(a.number("stepover", 0.49), "--stepover");
+  const std::string mode = p.empty() ? "" : p[0];
+  if (mode == "ctc01" && p.size() == 1) return ctc01(threads);
+  if (mode == "raster" && p.size() == 2) {
+    requireFile(p[1]);
+    return wholeRaster(p[1], stepover, threads);
+  }
+  if (mode == "ctc01") throw BenchUsageError("ctc01 takes no PART");
+  if (mode == "raster") throw BenchUsageError("raster needs a PART");
+  throw BenchUsageError(mode.empty() ? "ctc01 or raster expected" : "ctc01 or raster expected, not '" + mode + "'");
+}
+
 }  // namespace
 
-int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: bench_finishing_checks ctc01 | raster PART [--stepover S] [--threads N]\n");
-    return 2;
-  }
-  const std::string mode = argv[1];
-  std::string file;
-  double stepover = 0.49;
-  int threads = 0;
-  for (int i = 2; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) threads = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--stepover") && i + 1 < argc) stepover = std::atof(argv[++i]);
-    else file = argv[i];
-  }
-  try {
-    if (mode == "ctc01") return ctc01(threads);
-    if (mode == "raster" && !file.empty()) return wholeRaster(file, stepover, threads);
-  } catch (const InputError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return 1;
-  }
-  std::fprintf(stderr, "usage: bench_finishing_checks ctc01 | raster PART [--stepover S] [--threads N]\n");
-  return 2;
-}
+int main(int argc, char** argv) { return runBench(argc, argv, kUsage, benchMain); }

@@ -14,11 +14,17 @@
 #include "art2part/finishing/holes.h"
 #include "art2part/geometry/part.h"
 #include "art2part/simulation/verify.h"
+#include "bench_main.h"
 
 using namespace art2part;
 
 namespace {
 
+const char* const kUsage =
+    "bench_holes [--simulate] [--resolution MM] [PART ...]\n"
+    "  PART: default the shared STEP parts; a name without a slash is looked up in the shared folder\n"
+    "  --simulate: sweep every hole's paths (spot, drill, helix) through the plugs with verifyToolpath and print\n"
+    "  gouges, collisions, leftover (--resolution MM: the lattice's spacing; default automatic)\n";
 const std::string kParts = ART2PART_SHARED_PARTS;
 
 double since(std::chrono::steady_clock::time_point start) {
@@ -128,29 +134,24 @@ void benchPart(const std::string& path, const ToolLibrary& library, bool simulat
   if (simulate) simulateHoles(part, holes, methods, library, resolution);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  const ToolLibrary library = loadToolLibrary(std::string(ART2PART_SOURCE_DIR) + "/config/tools.yaml");
+int benchMain(const std::vector<std::string>& args) {
+  const BenchArgs a(args, {"simulate"}, {"resolution"});
+  const bool simulate = a.flag("simulate");
+  const double resolution = a.number("resolution", 0);  // the lattice: 0 automatic
+  if (resolution < 0) throw BenchUsageError("--resolution must not be negative");
   std::vector<std::string> parts;
-  bool simulate = false;
-  double resolution = 0;  // the lattice: automatic
-  for (int a = 1; a < argc; ++a) {
-    const std::string name = argv[a];
-    if (name == "--simulate") {
-      simulate = true;
-      continue;
-    }
-    if (name == "--resolution" && a + 1 < argc) {
-      resolution = std::stod(argv[++a]);
-      continue;
-    }
+  for (const std::string& name : a.positional())
     parts.push_back(name.find('/') == std::string::npos ? kParts + "/" + name : name);
-  }
   if (parts.empty())
     for (const char* name : {"nist_ctc_01_asme1_rd.stp", "nist_ctc_02_asme1_rc.stp", "ANC101.stp", "featuretype.STEP"})
       parts.push_back(kParts + "/" + name);
+  for (const std::string& path : parts) requireFile(path);
+  const ToolLibrary library = loadToolLibrary(std::string(ART2PART_SOURCE_DIR) + "/config/tools.yaml");
   std::printf("holes on %zu parts, library %zu tools\n", parts.size(), library.tools.size());
   for (const std::string& path : parts) benchPart(path, library, simulate, resolution);
   return 0;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return runBench(argc, argv, kUsage, benchMain); }

@@ -6,11 +6,13 @@
 
 #include "art2part/geometry/part.h"
 #include "art2part/geometry/segmentation.h"
+#include "bench_main.h"
 
 using namespace art2part;
 
 namespace {
 
+const char* const kUsage = "bench_part   (no arguments: every shared part)\n";
 const std::string kParts = ART2PART_SHARED_PARTS;
 
 double since(std::chrono::steady_clock::time_point start) {
@@ -23,9 +25,8 @@ void printFaces(const Part& part) {
               c.cone, c.sphere, c.torus, c.other);
 }
 
-}  // namespace
-
-int main() {
+int benchMain(const std::vector<std::string>& args) {
+  BenchArgs(args, {}, {}).positional(0);  // no arguments: any is a usage mistake
   std::printf("loading: triangles, faces, seconds (load + repair + faces + adjacency)\n");
   for (const char* name : {"nist_ctc_01_asme1_rd.stp", "nist_ctc_02_asme1_rc.stp", "ANC101.stp", "featuretype.STEP",
                            "ktoolcav.stl", "mount_rush.stl", "Ailette001Solid-nohole-decimated-smoothed.stl",
@@ -54,3 +55,7 @@ int main() {
   }
   return 0;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return runBench(argc, argv, kUsage, benchMain); }

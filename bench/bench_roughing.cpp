@@ -14,11 +14,14 @@
 #include "art2part/roughing/roughing.h"
 #include "art2part/simulation/verify.h"
 #include "art2part/visibility/analysis.h"
+#include "bench_main.h"
 
 using namespace art2part;
 
 namespace {
 
+const char* const kUsage =
+    "bench_roughing [PART] [--one-setup]   (a file name in shared/parts, or \"all\"; --one-setup: table 1 only)\n";
 const std::string kParts = ART2PART_SHARED_PARTS;
 const std::string kTools = std::string(ART2PART_SOURCE_DIR) + "/config/tools.yaml";
 const char* kAll[] = {"nist_ctc_01_asme1_rd.stp", "nist_ctc_02_asme1_rc.stp", "nist_ctc_02_asme1_rc_fine_tess.stl",
@@ -83,14 +86,12 @@ void benchPlan(const std::string& name, const Part& part, const SetupPlan& setup
               report.leftover_max_mm, used.c_str());
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  std::setvbuf(stdout, nullptr, _IOLBF, 0);
-  std::vector<std::string> parts;
-  if (argc > 1 && std::string(argv[1]) != "all") parts.push_back(argv[1]);
-  else parts.assign(std::begin(kAll), std::end(kAll));
-  const bool one_setup = argc > 2 && std::string(argv[2]) == "--one-setup";
+int benchMain(const std::vector<std::string>& args) {
+  const BenchArgs a(args, {"one-setup"}, {});
+  std::vector<std::string> parts = a.positional(1);
+  if (parts.empty() || parts[0] == "all") parts.assign(std::begin(kAll), std::end(kAll));
+  for (const std::string& name : parts) requireFile(kParts + "/" + name);
+  const bool one_setup = a.flag("one-setup");
   const ToolLibrary library = loadToolLibrary(kTools);
   std::vector<Part> loaded;
   for (const std::string& name : parts) loaded.push_back(loadPart(kParts + "/" + name));
@@ -111,4 +112,11 @@ int main(int argc, char** argv) {
     for (bool five_axis : {false, true}) benchPlan(parts[i], loaded[i], setups, library, five_axis);
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
+  return runBench(argc, argv, kUsage, benchMain);
 }

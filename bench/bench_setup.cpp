@@ -7,16 +7,17 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <string>
 #include <unordered_set>
 
 #include "art2part/setup/setup_plan.h"
+#include "bench_main.h"
 
 using namespace art2part;
 
 namespace {
 
+const char* const kUsage = "bench_setup [LEVEL [PART]]   (sphere level, default 4; PART a file name in shared/parts)\n";
 const std::string kParts = ART2PART_SHARED_PARTS;
 constexpr double kPi = 3.14159265358979323846;
 
@@ -74,27 +75,28 @@ void benchPart(const std::string& name, int level) {
               b.greedy_setups, b.proven_minimal ? "yes" : "no");
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  std::setvbuf(stdout, nullptr, _IOLBF, 0);  // figures appear as they are measured, also into a file
-  const int level = argc > 1 ? std::atoi(argv[1]) : 4;
-  const std::string only = argc > 2 ? argv[2] : "";
+int benchMain(const std::vector<std::string>& args) {
+  const std::vector<std::string> p = BenchArgs(args, {}, {}).positional(2);
+  const int level = p.size() > 0 ? atLeast(parseInteger(p[0], "LEVEL"), 0, "LEVEL") : 4;
+  const std::string only = p.size() > 1 ? p[1] : "";
   const char* parts[] = {"nist_ctc_01_asme1_rd.stp", "nist_ctc_02_asme1_rc.stp", "ANC101.stp", "featuretype.STEP",
                          "ktoolcav.stl", "mount_rush.stl", "Ailette001Solid-nohole-decimated-smoothed.stl",
                          "nist_ctc_02_asme1_rc_fine_tess.stl"};
+  if (!only.empty()) requireOneOf(only, parts);
   std::printf("setups at sphere level %d; seconds; core = cyclic core (candidates x elements) of the plain minimum cover; "
               "setups, greedy, proven; angle = max degrees from a 3-axis setup direction to a plane normal or axis\n",
               level);
   std::printf("%-46s %7s %5s %6s %7s | 3ax %6s %6s (%5s %6s) %10s %2s %2s %-3s %5s | 5ax %6s %6s %10s %2s %2s %-3s\n",
               "part", "tri", "dir", "vis", "cones", "reach", "cover", "red", "search", "core", "n", "gr", "pr",
               "angle", "reach", "cover", "core", "n", "gr", "pr");
-  try {
-    for (const char* name : parts)
-      if (only.empty() || only == name) benchPart(name, level);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "bench_setup: %s\n", e.what());
-    return 1;
-  }
+  for (const char* name : parts)
+    if (only.empty() || only == name) benchPart(name, level);
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);  // figures appear as they are measured, also into a file
+  return runBench(argc, argv, kUsage, benchMain);
 }

@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <ctime>
 #include <string>
 #include <thread>
@@ -14,11 +13,15 @@
 #include "art2part/geometry/part.h"
 #include "art2part/simulation/mesh_dexels.h"
 #include "art2part/simulation/verify.h"
+#include "bench_main.h"
 
 using namespace art2part;
 
 namespace {
 
+const char* const kUsage =
+    "bench_simulation [PART] [--threads N] [--lines N]\n"
+    "  PART: a path, default shared/parts/nist_ctc_01_asme1_rd.stp; --lines: lines of 1000 moves, default 100\n";
 constexpr double kResolution = 0.2;
 constexpr double kMargin = 2.0;
 constexpr double kPartSize = 100.0;
@@ -85,16 +88,12 @@ Toolpath raster(const Mesh& part, const Tool& tool, int lines) {
   return path;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  std::string file = std::string(ART2PART_SHARED_PARTS) + "/nist_ctc_01_asme1_rd.stp";
-  int threads = 0, lines = 100;
-  for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) threads = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--lines") && i + 1 < argc) lines = std::atoi(argv[++i]);
-    else file = argv[i];
-  }
+int benchMain(const std::vector<std::string>& args) {
+  const BenchArgs a(args, {}, {"threads", "lines"});
+  const std::vector<std::string>& p = a.positional(1);
+  const std::string file = p.empty() ? std::string(ART2PART_SHARED_PARTS) + "/nist_ctc_01_asme1_rd.stp" : p[0];
+  const int threads = atLeast(a.integer("threads", 0), 0, "--threads");
+  const int lines = atLeast(a.integer("lines", 100), 1, "--lines");
   Part part = loadPart(file);
   const Box box = boundingBox(part.mesh);
   scaleMesh(part.mesh, kPartSize / box.size().maxCoeff());
@@ -127,3 +126,7 @@ int main(int argc, char** argv) {
               r.region_count);
   return 0;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return runBench(argc, argv, kUsage, benchMain); }

@@ -5,10 +5,13 @@
 #include <random>
 
 #include "art2part/sphere/direction_set.h"
+#include "bench_main.h"
 
 using namespace art2part;
 
 namespace {
+
+const char* const kUsage = "bench_sphere   (no arguments)\n";
 
 double secondsToBuild(int level, SphereBase base, int repeats) {
   const auto start = std::chrono::steady_clock::now();
@@ -32,9 +35,8 @@ double secondsPerLookup(const DirectionSet& set, int count) {
 
 const char* name(SphereBase base) { return base == SphereBase::Tetrahedron ? "tetrahedron" : "icosahedron"; }
 
-}  // namespace
-
-int main() {
+int benchMain(const std::vector<std::string>& args) {
+  BenchArgs(args, {}, {}).positional(0);  // no arguments: any is a usage mistake
   std::printf("cell area ratio (largest / smallest)\n%-6s %22s %22s\n", "level", "tetrahedron (cells)",
               "icosahedron (cells)");
   for (int level = 0; level <= 7; ++level) {
@@ -55,3 +57,7 @@ int main() {
     }
   return 0;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return runBench(argc, argv, kUsage, benchMain); }

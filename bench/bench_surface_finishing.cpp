@@ -19,11 +19,14 @@
 #include "art2part/finishing/surface_finishing.h"
 #include "art2part/roughing/shadow.h"
 #include "art2part/simulation/verify.h"
+#include "bench_main.h"
 
 using namespace art2part;
 
 namespace {
 
+const char* const kUsage =
+    "bench_surface_finishing [PART] [--verify]   (a file name in shared/parts, or \"all\")\n";
 const std::string kParts = ART2PART_SHARED_PARTS;
 const std::string kCtc02 = "nist_ctc_02_asme1_rc_fine_tess.stl";
 
@@ -124,23 +127,19 @@ void benchFinishing(const std::string& name, const Part& part, const Vec3& dir, 
   }
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  std::string only = "all";
-  bool verify = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--verify") verify = true;
-    else only = a;
-  }
+int benchMain(const std::vector<std::string>& args) {
+  const BenchArgs a(args, {"verify"}, {});
+  const std::vector<std::string>& p = a.positional(1);
+  const std::string only = p.empty() ? "all" : p[0];
+  const bool verify = a.flag("verify");
+  const std::vector<std::string> parts = {"mount_rush.stl", "Ailette001Solid-nohole-decimated-smoothed.stl",
+                                          "ktoolcav.stl", kCtc02};
+  if (only != "all") requireOneOf(only, parts);
   if (only == "all" || only == kCtc02) benchDrops();
   std::printf("3-axis surface finishing, ball 6 mm, scallop 0.01 mm, chordal 0.005 mm, hardware threads\n");
   std::printf("%-30s %-3s %5s %8s %9s %6s %6s %5s %6s %8s %5s  %5s %5s %5s %8s %7s %8s %6s %6s %6s %7s\n", "part",
               "dir", "faces", "area", "drops", "M/s", "rows", "levls", "contrs", "points", "retr", "step", "row", "level",
               "planned", "skipped", "unreach", "map s", "rast s", "wl s", "total s");
-  const std::vector<std::string> parts = {"mount_rush.stl", "Ailette001Solid-nohole-decimated-smoothed.stl",
-                                          "ktoolcav.stl", kCtc02};
   for (const std::string& name : parts) {
     if (only != "all" && only != name) continue;
     const Part part = load(name);
@@ -152,3 +151,7 @@ int main(int argc, char** argv) {
   }
   return 0;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return runBench(argc, argv, kUsage, benchMain); }

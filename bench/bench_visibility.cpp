@@ -17,11 +17,16 @@
 #include "art2part/visibility/analysis.h"
 #include "art2part/visibility/cones.h"
 #include "art2part/visibility/exact_visibility.h"
+#include "bench_main.h"
 
 using namespace art2part;
 
 namespace {
 
+const char* const kUsage =
+    "bench_visibility [speed [default|ray] | scaling | accuracy [PART [LEVEL]] | judge [PART [LEVEL [SAMPLES]]] |\n"
+    "                  all [PART [LEVEL]]]\n"
+    "  default all (PART and LEVEL for its accuracy); PART a file name in shared/parts, \"\" for every part\n";
 const std::string kParts = ART2PART_SHARED_PARTS;
 constexpr double kPi = 3.14159265358979323846;
 
@@ -298,20 +303,30 @@ void judge(const std::string& only, int level, int samples) {
   }
 }
 
+int benchMain(const std::vector<std::string>& args) {
+  const std::vector<std::string> p = BenchArgs(args, {}, {}).positional(4);
+  const std::string what = p.size() > 0 ? p[0] : "all";
+  // The arguments after the figure's name: how many it takes, then each checked before any work starts.
+  const std::map<std::string, std::size_t> takes{{"speed", 1}, {"scaling", 0}, {"accuracy", 2}, {"judge", 3}, {"all", 2}};
+  if (!takes.count(what)) throw BenchUsageError("unknown figure '" + what + "'");
+  if (p.size() > 1 + takes.at(what)) throw BenchUsageError("unexpected argument '" + p[1 + takes.at(what)] + "'");
+  const std::string variant = what == "speed" && p.size() > 1 ? p[1] : "";
+  if (!variant.empty() && variant != "default" && variant != "ray")
+    throw BenchUsageError("speed takes default or ray, not '" + variant + "'");
+  const std::string part = what != "speed" && p.size() > 1 ? p[1] : "";
+  if (!part.empty()) requireOneOf(part, kAllParts);
+  const int level = p.size() > 2 ? atLeast(parseInteger(p[2], "LEVEL"), 0, "LEVEL") : 4;
+  const int samples = p.size() > 3 ? atLeast(parseInteger(p[3], "SAMPLES"), 1, "SAMPLES") : 2000;
+  if (what == "speed" || what == "all") speed(variant);
+  if (what == "scaling" || what == "all") scaling();
+  if (what == "accuracy" || what == "all") accuracy(part, level);
+  if (what == "judge") judge(part, level, samples);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // figures appear as they are measured, also into a file
-  const std::string what = argc > 1 ? argv[1] : "all";
-  try {
-    if (what == "speed" || what == "all") speed(what == "speed" && argc > 2 ? argv[2] : "");
-    if (what == "scaling" || what == "all") scaling();
-    if (what == "accuracy" || what == "all") accuracy(argc > 2 ? argv[2] : "", argc > 3 ? std::stoi(argv[3]) : 4);
-    if (what == "judge")
-      judge(argc > 2 ? argv[2] : "", argc > 3 ? std::stoi(argv[3]) : 4, argc > 4 ? std::stoi(argv[4]) : 2000);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "bench_visibility: %s\n", e.what());
-    return 1;
-  }
-  return 0;
+  return runBench(argc, argv, kUsage, benchMain);
 }

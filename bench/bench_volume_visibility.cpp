@@ -3,17 +3,20 @@
 //   bench_volume_visibility [PART VOXEL_MM [LEVEL]]   (default: ANC101 at 2 mm and CTC 1 at 4 mm, level 4)
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
 #include <string>
 
 #include "art2part/geometry/part.h"
 #include "art2part/sphere/direction_set.h"
 #include "art2part/visibility/volume_visibility.h"
+#include "bench_main.h"
 
 using namespace art2part;
 
 namespace {
 
+const char* const kUsage =
+    "bench_volume_visibility [PART VOXEL_MM [LEVEL]]\n"
+    "  PART a file name in shared/parts; default: ANC101 at 2 mm and CTC 1 at 4 mm, level 4\n";
 const std::string kParts = ART2PART_SHARED_PARTS;
 
 void run(const std::string& file, double voxel, int level) {
@@ -38,14 +41,21 @@ void run(const std::string& file, double voxel, int level) {
               vv.cone_of_voxel.size() * 4 * mb, vv.cone_words.size() * 8 * mb, dense * mb);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  if (argc >= 3) {
-    run(argv[1], std::atof(argv[2]), argc >= 4 ? std::atoi(argv[3]) : 4);
+int benchMain(const std::vector<std::string>& args) {
+  const std::vector<std::string> p = BenchArgs(args, {}, {}).positional(3);
+  if (p.size() == 1) throw BenchUsageError("PART needs VOXEL_MM");
+  if (p.size() >= 2) {
+    const double voxel = positive(parseNumber(p[1], "VOXEL_MM"), "VOXEL_MM");
+    const int level = p.size() > 2 ? atLeast(parseInteger(p[2], "LEVEL"), 0, "LEVEL") : 4;
+    requireFile(kParts + "/" + p[0]);
+    run(p[0], voxel, level);
     return 0;
   }
   run("ANC101.stp", 2.0, 4);
   run("nist_ctc_01_asme1_rd.stp", 4.0, 4);
   return 0;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return runBench(argc, argv, kUsage, benchMain); }
