@@ -3,11 +3,11 @@
 // operation has finished. Why from the stock and not from the centre regions alone: a rest pass's regions are narrow
 // bands round its targets and a link between two of them rarely stays inside any, while the slabs' stock says where
 // the tool may pass over cleared pockets, over the part's own air and outside the block.
-// Sound because a finished slab's `remaining` holds everything left in it (the part's section included) and holds
-// only less as the operation goes on; a segment is clear of a slab when every body zone overlapping the slab's
-// heights, or coming within the margin over its top, keeps its radius plus the margin from every point of
-// `remaining`. Slabs not finished are never crossed: heights start at the caller's lowest, at or above the current
-// slab's top. Every zone keeps the margin over the stock's top; beside it the flutes, and a shank no wider than them,
+// Sound because a slab's `remaining` holds everything that may be in it when the link is made (the part's section
+// included; the caller adds the stock still to be cut there, or gives only slabs it has finished) and holds only less
+// as the operation goes on; a segment is clear of a slab when every body zone overlapping the slab's heights, or
+// coming within the margin over its top, keeps its radius plus the margin from every point of `remaining`. Heights
+// start at the caller's lowest, at or above the top of the slab it cuts. Every zone keeps the margin over the stock's top; beside it the flutes, and a shank no wider than them,
 // keep none, and `remaining` loses the whole disc the cutter swept round every centre point (the slab's own record
 // keeps a band kClearedInsetMm wide of it): otherwise no link could pass where the tool has just cut beside a wall,
 // a tool radius from the stock left on the wall.
@@ -26,10 +26,11 @@ class LinkClearance {
   // `margin`: mm kept between any part of the tool and the stock (the holder margin of roughing).
   LinkClearance(const Tool& tool, double margin);
 
-  // A slab the operation has finished (its stock left, part section included) and what its level swept: the centre
-  // region grown by the tool radius (every point within the radius of it is swept: clearing_paths.h). Slabs come
-  // top down.
+  // A slab (its stock, part section included) and what the operation swept there, if anything: the centre region
+  // grown by the tool radius (every point within the radius of it is swept: clearing_paths.h).
   void addSlab(const SlabState& slab, const Region& swept);
+  // The slab added `index`-th, as it stands now: its stock may only have shrunk (pieces of it cut since).
+  void replaceSlab(std::size_t index, const SlabState& slab, const Region& swept);
 
   // The lowest height in [lowest, ceiling) at which the tool tip may go straight from `a` to `b` with every body zone
   // clear of every finished slab, or `ceiling` when none is: each slab within a zone's reach of the segment lifts the
@@ -49,6 +50,7 @@ class LinkClearance {
     Region remaining;
     std::vector<Edge> edges;
   };
+  static Slab slabOf(const SlabState& slab, const Region& swept);
   bool clearAt(const Point2& a, const Point2& b, double height) const;
   // The distance from the segment to the slab's stock (0 where it enters it); farther than `beyond`: any larger value.
   static double distanceTo(const Slab& slab, const Point2& a, const Point2& b, double beyond);

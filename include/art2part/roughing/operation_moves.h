@@ -1,14 +1,13 @@
 // The moves of one roughing operation from the regions of its levels (clearing_paths.h), in its setup's frame.
-// Level after level, top down, each linked to the next without leaving the material proven clear (stay-down links:
-// the centre regions of the levels cut, and the stock their slabs hold, LinkClearance). A rest pass's pieces lie in a
-// few places round the part, and level after level would cross the part between them at every level: with
-// `by_clusters`, its pieces are gathered into clusters (pieces closer than the tool's widest radius within the
-// operation's height + margin + cutter radius to each other, transitively, at any levels) and each cluster is cut top
-// down before the next one.
-// Why that order is sound: the regions were planned for the whole level order, and a piece of one cluster is farther
-// from every piece of another than the tool's body reaches plus the cutter's radius, so the stock another cluster has
-// yet to remove, which lies within a cutter radius of its pieces, is out of the body's reach at every height. Links
-// inside a cluster are proven from the cluster's own levels only; between clusters they go over the clearance plane.
+// With stay-down links, piece by piece (pieceOrder): the connected pieces of every level's centre region in an order
+// that finishes the pocket the tool is in before it crosses to the next, each linked to the last without leaving the
+// material proven clear (the pieces cut, ClearedLevel, and the stock the slabs hold, LinkClearance). Level after
+// level would cross the part between pockets at every level. Without stay-down links, level after level.
+// Why the piece order is sound: the regions were planned for the whole level order, and a piece is cut only after
+// every piece above it whose box lies within the tool's body reach plus the cutter's radius of its own (the stock
+// such a piece removes lies within a cutter radius of it): what is left above when it is cut, within the body's
+// reach, is what the plan left. Pieces below it, cut before or not, only take stock away. Links are proven from the
+// slabs as they stand: their final stock plus the pieces still to come grown by the cutter's radius.
 #pragma once
 
 #include <vector>
@@ -29,7 +28,6 @@ struct OperationLevels {
 struct OperationMovesOptions {
   ClearingOptions clearing;   // stay_down decides whether links are kept low at all
   double holder_margin = 0.5;  // mm kept between the body and the stock on a link (LinkClearance)
-  bool by_clusters = false;    // cut cluster after cluster (rest passes), else level after level
   bool by_engagement = false;  // each level front by front (clearLevelByEngagement, with `engagement`), else zig-zag
   EngagementOptions engagement;
 };
@@ -39,9 +37,15 @@ struct OperationMovesOptions {
 std::vector<ClearingPoint> operationMoves(const OperationLevels& levels, const Tool& tool,
                                           const OperationMovesOptions& options, ClearingStats& stats);
 
-// The clusters of pieces: for each cluster, per level (index into levels), the rings of its pieces there; clusters in
-// the order of their highest piece. Pieces whose boxes lie within `reach` of each other share a cluster, so pieces of
-// different clusters lie farther apart than `reach`.
-std::vector<std::vector<Region>> pieceClusters(const std::vector<ClearingLevel>& levels, double reach);
+// A connected piece of one level's centre region.
+struct LevelPiece {
+  std::size_t level = 0;  // index into the levels, top down
+  Region rings;           // the outer ring first, then its holes
+};
+
+// Every level's pieces in an order to cut them: a piece comes after each piece of a level above whose box lies within
+// `reach` of its box; among the pieces so ready, first the first piece of the top level, then the one whose box is
+// nearest the last one's (at a tie, the deepest: down the pocket the tool is in).
+std::vector<LevelPiece> pieceOrder(const std::vector<ClearingLevel>& levels, double reach);
 
 }  // namespace art2part

@@ -41,7 +41,7 @@ LinkClearance::LinkClearance(const Tool& tool, double margin) : margin_(margin) 
   widest_ = zones_.back().radius;
 }
 
-void LinkClearance::addSlab(const SlabState& slab, const Region& swept) {
+LinkClearance::Slab LinkClearance::slabOf(const SlabState& slab, const Region& swept) {
   Slab s;
   s.z = slab.z;
   s.top = slab.top;
@@ -54,7 +54,13 @@ void LinkClearance::addSlab(const SlabState& slab, const Region& swept) {
       s.lo = s.lo.cwiseMin(ring[i]);
       s.hi = s.hi.cwiseMax(ring[i]);
     }
-  slabs_.push_back(std::move(s));
+  return s;
+}
+
+void LinkClearance::addSlab(const SlabState& slab, const Region& swept) { slabs_.push_back(slabOf(slab, swept)); }
+
+void LinkClearance::replaceSlab(std::size_t index, const SlabState& slab, const Region& swept) {
+  slabs_.at(index) = slabOf(slab, swept);
 }
 
 double LinkClearance::distanceTo(const Slab& slab, const Point2& a, const Point2& b, double beyond) {

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <limits>
-#include <numeric>
 #include <optional>
 
 #include "art2part/roughing/forbidden_region.h"
@@ -29,11 +28,6 @@ Box2 boxOf(const Region& rings) {
   for (const Ring& ring : regionRings(rings))
     for (const Point2& p : ring) box.lo = box.lo.cwiseMin(p), box.hi = box.hi.cwiseMax(p);
   return box;
-}
-
-std::size_t findRoot(std::vector<std::size_t>& parent, std::size_t i) {
-  while (parent[i] != i) i = parent[i] = parent[parent[i]];
-  return i;
 }
 
 // Writes levels one after the other, linking each to where the last one left the tool.
@@ -112,106 +106,105 @@ double bodyReach(const Tool& tool, const OperationLevels& levels) {
   return reach;
 }
 
-// The cluster whose first piece's box is nearest the tool (the first in order, at the start).
-std::size_t nearestCluster(const std::vector<std::vector<Region>>& clusters, const std::vector<bool>& done,
-                           const MoveWriter& writer) {
-  std::size_t next = clusters.size();
-  double nearest = std::numeric_limits<double>::infinity();
-  for (std::size_t c = 0; c < clusters.size(); ++c) {
-    if (done[c]) continue;
-    double d = 0;
-    if (writer.at()) {
-      const auto first = std::find_if(clusters[c].begin(), clusters[c].end(), [](const Region& r) { return !r.empty(); });
-      const Box2 box = boxOf(*first);
-      const Point2 p = writer.at()->head<2>();
-      d = (p.cwiseMax(box.lo).cwiseMin(box.hi) - p).squaredNorm();
-    }
-    if (d < nearest) next = c, nearest = d;
+// Piece after piece in pieceOrder; links over the pieces cut (ClearedLevel) and over the slabs as they stand: each
+// slab's final stock plus what its pieces still to come will take there (their centres grown by the cutter's
+// radius).
+void pieceByPiece(const OperationLevels& levels, const Tool& tool, const OperationMovesOptions& options,
+                  MoveWriter& writer) {
+  const double r = tool.diameter / 2, reach = r - reachShortfall(options);
+  const std::vector<LevelPiece> order = pieceOrder(levels.levels, bodyReach(tool, levels) + options.holder_margin + r);
+  std::vector<Region> sweeps;  // per piece in order: what it takes, at most
+  std::vector<std::vector<std::size_t>> pending(levels.levels.size());  // per level: its pieces not cut yet
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    sweeps.push_back(offsetRegion(order[k].rings, reach));
+    pending[order[k].level].push_back(k);
   }
-  return next;
+  // The slab's stock while pieces of it are still to come: its final stock, less what the level sweeps (the proofs
+  // keep no band: link_clearance.h), plus those pieces' sweeps.
+  auto slabNow = [&](std::size_t i) {
+    SlabState slab = levels.slabs[i];
+    slab.remaining = subtract(slab.remaining, levels.swept[i]);
+    for (std::size_t k : pending[i]) slab.remaining = unite(slab.remaining, sweeps[k]);
+    return slab;
+  };
+  LinkClearance link_clearance(tool, options.holder_margin);
+  for (std::size_t i = 0; i < levels.slabs.size() && i < levels.levels.size(); ++i) link_clearance.addSlab(slabNow(i), {});
+  std::vector<ClearedLevel> cleared;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const LevelPiece& piece = order[k];
+    // The level as planned (its flags, step-over, engagement, stock_reach: its other pieces' stock too, material to
+    // go round), narrowed to this piece.
+    ClearingLevel clear = levels.levels[piece.level];
+    clear.centre = piece.rings;
+    clear.air = intersect(levels.levels[piece.level].air, piece.rings);
+    clear.cleared = cleared;
+    clear.clear_height = [&link_clearance](const Point2& a, const Point2& b, double lowest, double ceiling) {
+      return link_clearance.lowestClear(a, b, lowest, ceiling);
+    };
+    writer.level(std::move(clear));
+    remember(cleared, levels.levels[piece.level].z, piece.rings, reachShortfall(options));
+    std::vector<std::size_t>& left = pending[piece.level];
+    left.erase(std::find(left.begin(), left.end(), k));
+    if (piece.level < levels.slabs.size()) link_clearance.replaceSlab(piece.level, slabNow(piece.level), {});
+  }
 }
 
-// Cluster after cluster, nearest first; each top down. Its links over its own levels cut, and over the slabs as they
-// stand while it is cut: their final stock, plus what the clusters still to come will take there (their pieces
-// grown by the cutter's radius).
-void clusterByCluster(const OperationLevels& levels, const Tool& tool, const OperationMovesOptions& options,
-                      MoveWriter& writer) {
-  const double r = tool.diameter / 2;
-  const std::vector<std::vector<Region>> clusters =
-      pieceClusters(levels.levels, bodyReach(tool, levels) + options.holder_margin + r);
-  std::vector<std::vector<Region>> sweeps(clusters.size());  // per cluster and level: what it takes there, at most
-  for (std::size_t c = 0; c < clusters.size(); ++c)
-    for (const Region& pieces : clusters[c])
-      sweeps[c].push_back(pieces.empty() ? Region{} : offsetRegion(pieces, r - reachShortfall(options)));
-  std::vector<bool> done(clusters.size(), false);
-  for (std::size_t n = 0; n < clusters.size(); ++n) {
-    const std::size_t next = nearestCluster(clusters, done, writer);
-    done[next] = true;
-    std::vector<ClearedLevel> cleared;
-    LinkClearance link_clearance(tool, options.holder_margin);
-    for (std::size_t i = 0; i < levels.levels.size(); ++i) {
-      const Region& pieces = clusters[next][i];
-      if (!pieces.empty()) {
-        // The level as planned (its flags, step-over, engagement, stock_reach: other clusters' stock too, material
-        // to go round), narrowed to this cluster's pieces.
-        ClearingLevel clear = levels.levels[i];
-        clear.centre = pieces;
-        clear.air = intersect(levels.levels[i].air, pieces);
-        clear.cleared = cleared;
-        clear.clear_height = [&link_clearance](const Point2& a, const Point2& b, double lowest, double ceiling) {
-          return link_clearance.lowestClear(a, b, lowest, ceiling);
-        };
-        writer.level(std::move(clear));
-        remember(cleared, levels.levels[i].z, pieces, reachShortfall(options));
-      }
-      if (i >= levels.slabs.size()) continue;
-      SlabState slab = levels.slabs[i];
-      Region pending;
-      for (std::size_t c = 0; c < clusters.size(); ++c)
-        if (!done[c] && !sweeps[c][i].empty()) pending.insert(pending.end(), sweeps[c][i].begin(), sweeps[c][i].end());
-      if (!pending.empty()) slab.remaining = unite(slab.remaining, pending);
-      link_clearance.addSlab(slab, sweeps[next][i]);
-    }
-  }
+// The gap between two boxes (0 where they meet).
+double boxGap(const Box2& a, const Box2& b) {
+  const Point2 gap = (a.lo - b.hi).cwiseMax(b.lo - a.hi).cwiseMax(Point2::Zero());
+  return gap.norm();
 }
 
 }  // namespace
 
-std::vector<std::vector<Region>> pieceClusters(const std::vector<ClearingLevel>& levels, double reach) {
+std::vector<LevelPiece> pieceOrder(const std::vector<ClearingLevel>& levels, double reach) {
   struct Piece {
-    std::size_t level;
-    Region rings;
+    LevelPiece piece;
     Box2 box;
+    std::size_t waiting = 0;             // pieces above within reach not cut yet
+    std::vector<std::size_t> unblocks;   // pieces below within reach
   };
   std::vector<Piece> pieces;
   for (std::size_t i = 0; i < levels.size(); ++i)
     for (RegionPiece& piece : regionPieces(levels[i].centre)) {
       const Box2 box = boxOf(piece.rings);
-      pieces.push_back({i, std::move(piece.rings), box});
+      pieces.push_back({{i, std::move(piece.rings)}, box, 0, {}});
     }
-  std::vector<std::size_t> parent(pieces.size());
-  std::iota(parent.begin(), parent.end(), 0);
   for (std::size_t a = 0; a < pieces.size(); ++a)
     for (std::size_t b = a + 1; b < pieces.size(); ++b)
-      if (pieces[a].box.meets(pieces[b].box, reach)) parent[findRoot(parent, a)] = findRoot(parent, b);
-  std::vector<std::vector<Region>> clusters;
-  std::vector<std::size_t> index(pieces.size(), pieces.size());  // root -> cluster
-  for (std::size_t p = 0; p < pieces.size(); ++p) {  // clusters in the order of their first (highest) piece
-    const std::size_t root = findRoot(parent, p);
-    if (index[root] == pieces.size()) {
-      index[root] = clusters.size();
-      clusters.emplace_back(levels.size());
+      if (pieces[a].piece.level < pieces[b].piece.level && pieces[a].box.meets(pieces[b].box, reach)) {
+        pieces[a].unblocks.push_back(b);
+        ++pieces[b].waiting;
+      }
+  std::vector<LevelPiece> order;
+  std::vector<bool> done(pieces.size(), false);
+  const Box2* last = nullptr;
+  for (std::size_t n = 0; n < pieces.size(); ++n) {
+    std::size_t next = pieces.size();
+    double nearest = std::numeric_limits<double>::infinity();
+    for (std::size_t p = 0; p < pieces.size(); ++p) {
+      if (done[p] || pieces[p].waiting > 0) continue;
+      if (!last) {  // the first: the first piece of the top level
+        next = p;
+        break;
+      }
+      const double gap = boxGap(*last, pieces[p].box);
+      // Nearest first; at a tie, the deeper piece (down the pocket the tool is in).
+      if (gap < nearest || (gap == nearest && pieces[p].piece.level > pieces[next].piece.level))
+        next = p, nearest = gap;
     }
-    Region& at = clusters[index[root]][pieces[p].level];
-    at.insert(at.end(), pieces[p].rings.begin(), pieces[p].rings.end());
+    done[next] = true;
+    for (std::size_t b : pieces[next].unblocks) --pieces[b].waiting;
+    last = &pieces[next].box;
+    order.push_back(pieces[next].piece);
   }
-  return clusters;
+  return order;
 }
 
 std::vector<ClearingPoint> operationMoves(const OperationLevels& levels, const Tool& tool,
                                           const OperationMovesOptions& options, ClearingStats& stats) {
   MoveWriter writer(options, stats);
-  if (options.by_clusters && options.clearing.stay_down) clusterByCluster(levels, tool, options, writer);
+  if (options.clearing.stay_down) pieceByPiece(levels, tool, options, writer);
   else levelByLevel(levels, tool, options, writer);
   return writer.finish();
 }

@@ -383,7 +383,6 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
   OperationMovesOptions moves_options;
   moves_options.clearing = clearing;
   moves_options.holder_margin = options.clearing.holder_margin;
-  moves_options.by_clusters = before != nullptr;  // rest passes: cluster after cluster
   moves_options.by_engagement = by_engagement;
   moves_options.engagement.tool_radius = r;
   moves_options.engagement.max_engagement_deg = tool.max_engagement_deg;
