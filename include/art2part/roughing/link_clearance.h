@@ -7,10 +7,10 @@
 // included; the caller adds the stock still to be cut there, or gives only slabs it has finished) and holds only less
 // as the operation goes on; a segment is clear of a slab when every body zone overlapping the slab's heights, or
 // coming within the margin over its top, keeps its radius plus the margin from every point of `remaining`. Heights
-// start at the caller's lowest, at or above the top of the slab it cuts. Every zone keeps the margin over the stock's top; beside it the flutes, and a shank no wider than them,
-// keep none, and `remaining` loses the whole disc the cutter swept round every centre point (the slab's own record
-// keeps a band kClearedInsetMm wide of it): otherwise no link could pass where the tool has just cut beside a wall,
-// a tool radius from the stock left on the wall.
+// start at the caller's lowest, at or above the top of the slab it cuts. Every zone keeps the margin over the stock's
+// top; beside it the flutes, and a shank no wider than them, keep none, and `remaining` loses the whole disc the
+// cutter swept round every centre point (the slab's own record keeps a band kClearedInsetMm wide of it): otherwise no
+// link could pass where the tool has just cut beside a wall, a tool radius from the stock left on the wall.
 #pragma once
 
 #include <vector>

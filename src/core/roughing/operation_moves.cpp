@@ -128,7 +128,8 @@ void pieceByPiece(const OperationLevels& levels, const Tool& tool, const Operati
     return slab;
   };
   LinkClearance link_clearance(tool, options.holder_margin);
-  for (std::size_t i = 0; i < levels.slabs.size() && i < levels.levels.size(); ++i) link_clearance.addSlab(slabNow(i), {});
+  for (std::size_t i = 0; i < levels.slabs.size() && i < levels.levels.size(); ++i)
+    link_clearance.addSlab(slabNow(i), {});
   std::vector<ClearedLevel> cleared;
   for (std::size_t k = 0; k < order.size(); ++k) {
     const LevelPiece& piece = order[k];
