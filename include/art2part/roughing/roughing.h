@@ -52,9 +52,10 @@ struct RoughingOptions {
     double clearance = 5.0;       // mm above the stock's top: the retract plane of each setup
     double holder_margin = 0.5;   // mm kept between shank or holder and material
     // Links between passes, pieces and levels inside cleared material or over stock the slabs prove clear
-    // (clearing_paths.h, link_clearance.h), rest passes cluster by cluster (operation_moves.h); false: every link over
-    // the clearance plane, level by level. The simulation finds no gouge or collision in stay-down roughing on any
-    // shared part, and it cuts CTC-02's roughing time by 5 % and its rapids by 20-45 % per operation.
+    // (clearing_paths.h, link_clearance.h), piece after piece, a pocket finished before the next
+    // (operation_moves.h); false: every link over the clearance plane, level by level. The simulation finds no gouge
+    // or collision in stay-down roughing on any shared part, and it cuts CTC-02's roughing time by 5 % and its rapids
+    // by 20-45 % per operation.
     bool stay_down = true;
     // How the main pass clears a level. Engagement: with the largest of the library's high-efficiency cutters
     // (Tool::max_engagement_deg) that clears nearly what the smallest does, front by front under the cutter's
