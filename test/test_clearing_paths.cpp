@@ -520,6 +520,22 @@ TEST(ClearingPaths, StayDownLinksHopOverClearedMaterialInsteadOfRetracting) {
   EXPECT_LT(clearingLength(moves, false), 0.5 * clearingLength(retracting, false));
 }
 
+// Passes either side of an island: where going round the island's ring at the level takes less time than a hop and
+// a ramp, the tool feeds round it, and the level is entered once.
+TEST(ClearingPaths, LinksRoundAnIslandFeedAlongItsRingWhenThatIsQuicker) {
+  const ClearingLevel level =
+      levelOf(subtract(region({rectangle(0, 0, 100, 40)}), region({rectangle(30, 8, 70, 32)})));
+  ClearingOptions stay = optionsOf();
+  stay.stay_down = true;
+  ClearingStats stats;
+  const std::vector<ClearingPoint> moves = clearChecked(level, stay, stats);
+  EXPECT_EQ(stats.hops, 0);
+  EXPECT_EQ(stats.ramps, 1);
+  EXPECT_GE(stats.level_links, 1);
+  EXPECT_LE(worstCoverage(level.centre, moves, level.z), 2 + 1e-6);
+  EXPECT_LE(clearingLength(moves, false), 20);  // the descent from the clearance plane only
+}
+
 // A rest pass's level: its levels above cleared only their own pieces, so skins may stand over its centre above the
 // slab (column_clear false). With stay-down links and no stock model, no sideways rapid runs below the clearance
 // plane (expectSound: provenClear holds none there): where the same level known clear hops, it feeds along the level

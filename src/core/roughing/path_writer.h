@@ -104,6 +104,14 @@ class PathWriter {
       ++stats_.level_links;
       return true;
     }
+    if (may_feed && !inside && atLevel() && &feed_region == &level_.centre) {
+      const Polyline way = roundOneRing(from, start);
+      if (!way.empty() && 60 * pathLength(way) / feed_ <= hop_s) {
+        for (std::size_t i = 1; i < way.size(); ++i) feed(way[i]);
+        ++stats_.level_links;
+        return true;
+      }
+    }
     if (hop < options_.clearance_z) ++stats_.hops;
     moveAbove(start, hop);
     return false;
@@ -191,6 +199,53 @@ class PathWriter {
         if (segmentInside(cleared.centre, a, b)) best = height;
       }
     if (best > safe_z_ && level_.clear_height) best = std::min(best, level_.clear_height(a, b, safe_z_, best));
+    return best;
+  }
+
+  // A way from `a` to `b` inside `centre` where the straight one is not: round the one ring it crosses, from the
+  // vertex of the first edge it crosses to the vertex of the last, the shorter way round whose straight ends stay
+  // inside; empty when it crosses more than one ring or neither way stays inside.
+  Polyline roundOneRing(const Point2& a, const Point2& b) const {
+    const Point2 lo = a.cwiseMin(b), hi = a.cwiseMax(b);
+    const ClipperLib::Path* crossed = nullptr;
+    std::size_t first = 0, last = 0;
+    double t_first = 2, t_last = -1;
+    for (const ClipperLib::Path& path : level_.centre)
+      for (std::size_t i = 0; i < path.size(); ++i) {
+        const Point2 p = fromRegionPoint(path[i]), q = fromRegionPoint(path[(i + 1) % path.size()]);
+        if (std::max(p.x(), q.x()) < lo.x() || std::min(p.x(), q.x()) > hi.x() || std::max(p.y(), q.y()) < lo.y() ||
+            std::min(p.y(), q.y()) > hi.y())
+          continue;
+        const Point2 d = b - a, e = q - p;
+        const double den = d.x() * e.y() - d.y() * e.x();
+        if (std::abs(den) < 1e-12) continue;
+        const Point2 w = p - a;
+        const double t = (w.x() * e.y() - w.y() * e.x()) / den, u = (w.x() * d.y() - w.y() * d.x()) / den;
+        if (t < 0 || t > 1 || u < 0 || u > 1) continue;
+        if (crossed && crossed != &path) return {};
+        crossed = &path;
+        if (t < t_first) t_first = t, first = i;
+        if (t > t_last) t_last = t, last = i;
+      }
+    if (!crossed) return {};
+    const ClipperLib::Path& ring = *crossed;
+    const std::size_t n = ring.size();
+    Polyline best;
+    for (const bool ahead : {true, false}) {
+      // Ahead: from the end of the first edge crossed to the start of the last; back: the other way round.
+      Polyline way{a};
+      std::size_t v = ahead ? (first + 1) % n : first;
+      const std::size_t stop = ahead ? last : (last + 1) % n;
+      for (std::size_t steps = 0; steps <= n; ++steps) {
+        way.push_back(fromRegionPoint(ring[v]));
+        if (v == stop) break;
+        v = ahead ? (v + 1) % n : (v + n - 1) % n;
+      }
+      way.push_back(b);
+      if (way.size() > n + 2) continue;
+      if (!segmentInside(level_.centre, a, way[1]) || !segmentInside(level_.centre, way[way.size() - 2], b)) continue;
+      if (best.empty() || pathLength(way) < pathLength(best)) best = std::move(way);
+    }
     return best;
   }
 
