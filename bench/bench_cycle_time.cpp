@@ -72,8 +72,9 @@ void benchPart(const std::string& name, const ToolLibrary& library, const Machin
     if (d.simulated)
       std::printf("  dropped: setup %d %s %s, removed %.1f cm3 in %.0f s (planner's estimate)\n", d.setup, d.kind.c_str(),
                   d.tool.c_str(), d.removed_mm3 / 1000, d.seconds);
-  if (plan.useless.found > 0 && !plan.useless.dropped)
-    std::printf("  %d useless roughing operations kept: %s\n", plan.useless.found, plan.useless.kept_why.c_str());
+  if (plan.useless.kept > 0)
+    std::printf("  %d of %d useless roughing operations kept: %s\n", plan.useless.kept, plan.useless.found,
+                plan.useless.kept_why.c_str());
   double old_roughing = 0;  // the planners' own estimates (feed and rapid lengths at constant rates)
   for (const RoughingOperation& op : plan.roughing.operations) old_roughing += op.seconds;
   const CycleTime& r = figures.roughing;

@@ -349,6 +349,63 @@ TEST(UselessOperations, ARoughingRunTwiceIsDroppedWhenThePlanWithoutItIsAsClean)
   ASSERT_TRUE(j.contains("useless_roughing"));
   EXPECT_TRUE(j["useless_roughing"]["dropped"].get<bool>());
   EXPECT_TRUE(j["dropped_operations"].back().contains("removed_mm3"));
+  EXPECT_EQ(j["useless_roughing"]["kept"].get<int>(), 0);
+}
+
+// Two setups each with a roughing run twice: when the simulation without both finds a collision in the first one's
+// setup only (here a verifier that says so), that setup's useless run is put back and the other setup's left out.
+TEST(UselessOperations, TheUselessOfASetupWithFindingsStayTheOthersGo) {
+  const Part part = test::stepPart(test::pocketedBlock(Vec3(0, 0, 0), Vec3(60, 40, 20), 30, 20, 8, 4), "pocket");
+  const ToolLibrary library = loadToolLibrary(kConfig + "/tools.yaml");
+  PlanOptions options;
+  options.visibility.level = 2;
+  options.finish = false;
+  options.drop_useless = false;
+  PlanResult plan = planPart(part, library, options);
+  ASSERT_TRUE(plan.verified);
+  std::vector<RoughingOperation>& ops = plan.roughing.operations;
+  ASSERT_GE(ops.size(), 2u);
+  const int first_setup = ops.front().setup, last_setup = ops.back().setup;
+  ASSERT_NE(first_setup, last_setup) << "the part needs two setups for this test";
+  ops.push_back(ops.back());
+  ops.insert(ops.begin() + 1, ops.front());
+  auto roughingIn = [](const PlanResult& p, int setup) {
+    return std::count_if(p.roughing.operations.begin(), p.roughing.operations.end(),
+                         [&](const RoughingOperation& op) { return op.setup == setup; });
+  };
+  const auto first_setup_ops = roughingIn(plan, first_setup), last_setup_ops = roughingIn(plan, last_setup);
+  const auto verifier = [&](const PlanResult& p, VerificationState& state) {
+    VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, p.toolpath, p.tools,
+                                               planVerifyOptions(part, p, library, options), &state);
+    if (roughingIn(p, first_setup) < first_setup_ops)  // the run the first setup's rest relies on is gone
+      for (const PlanOperation& op : p.operations)
+        if (op.setup == first_setup) {
+          ++report.by_op[op.index].collisions;
+          ++report.collisions;
+          break;
+        }
+    return report;
+  };
+  combinePlan(plan, part, library, options);
+  plan.verification = verifier(plan, plan.simulation);
+  ASSERT_EQ(plan.verification.collisions, 0);
+  const std::vector<int> useless = uselessRoughing(plan);
+  ASSERT_NE(std::find(useless.begin(), useless.end(), 1), useless.end());
+  ASSERT_NE(std::find(useless.begin(), useless.end(), static_cast<int>(ops.size()) - 1), useless.end());
+
+  const std::size_t dropped_before = plan.roughing.dropped.size();
+  dropUselessRoughing(plan, part, library, options, verifier);
+  EXPECT_TRUE(plan.useless.dropped) << plan.useless.kept_why;
+  EXPECT_GE(plan.useless.kept, 1);
+  EXPECT_LT(plan.useless.kept, plan.useless.found);
+  EXPECT_NE(plan.useless.kept_why.find("setups " + std::to_string(first_setup)), std::string::npos)
+      << plan.useless.kept_why;
+  EXPECT_EQ(roughingIn(plan, first_setup), first_setup_ops);
+  EXPECT_LT(roughingIn(plan, last_setup), last_setup_ops);
+  ASSERT_GT(plan.roughing.dropped.size(), dropped_before);
+  for (std::size_t i = dropped_before; i < plan.roughing.dropped.size(); ++i)
+    EXPECT_NE(plan.roughing.dropped[i].setup, first_setup);
+  EXPECT_EQ(plan.verification.collisions, 0);  // the verification of the plan as kept
 }
 
 }  // namespace

@@ -52,8 +52,11 @@ struct PlanOperation {
 // What became of the roughing operations the simulation found removing almost nothing (useless_operations.h).
 struct UselessRoughing {
   int found = 0;           // roughing operations under kUselessRemovalShare of the roughing's volume
-  bool dropped = false;    // left out (RoughingPlan::dropped lists them): the plan without them verified as clean
-  std::string kept_why;    // found but kept: why (the simulation without them, or the verification was cancelled)
+  bool dropped = false;    // some or all left out (RoughingPlan::dropped lists them): the plan without them verified
+                           // as clean
+  int kept = 0;            // found but kept: those of setups where the simulation without them finds something, or
+                           // all of them
+  std::string kept_why;    // why (the simulation without them, or the verification was cancelled)
 };
 
 struct PlanResult {

@@ -9,8 +9,11 @@
 // verification's per-operation figures) is left out, the plan recombined and verified again. The drop is kept only
 // when that verification finds no more gouges and no more collisions than the first and leaves at most what the
 // dropped operations removed beyond the first's leftover (what they took falls to the operations after them or stays);
-// otherwise the plan is put back exactly as it was (operations, toolpath, verification) and says why. One round: the
-// operations after a dropped one cut what it left, so none of them becomes useless by the drop.
+// otherwise, when that verification found its gouges or collisions in some setups only, the useless operations of
+// those setups are put back (the operations after one in its setup may rely on the little it took: a skin a rapid
+// crosses), the others left out and the plan verified once more under the same rule. Failing that too, the plan is
+// put back exactly as it was (operations, toolpath, verification) and says why. No further rounds: the operations
+// after a dropped one cut what it left, so none of them becomes useless by the drop.
 #pragma once
 
 #include <functional>

@@ -193,7 +193,8 @@ nlohmann::json planJson(const Part& part, const PlanResult& plan, const Machine&
     j["dropped_operations"].push_back(op);
   }
   if (plan.useless.found > 0) {
-    j["useless_roughing"] = {{"found", plan.useless.found}, {"dropped", plan.useless.dropped}};
+    j["useless_roughing"] = {
+        {"found", plan.useless.found}, {"dropped", plan.useless.dropped}, {"kept", plan.useless.kept}};
     if (!plan.useless.kept_why.empty()) j["useless_roughing"]["kept_why"] = plan.useless.kept_why;
   }
   j["roughing_region_failures"] = plan.roughing.region_failures;

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <map>
+#include <set>
 #include <utility>
 
 namespace art2part {
@@ -79,6 +81,46 @@ std::vector<int> uselessRoughing(const PlanResult& plan) {
   return useless;
 }
 
+namespace {
+
+// The setups where `report` (of the combined `plan`) finds a gouge or a collision.
+std::set<int> setupsWithFindings(const PlanResult& plan, const VerificationReport& report) {
+  std::set<int> setups;
+  for (const PlanOperation& op : plan.operations) {
+    const auto check = report.by_op.find(op.index);
+    if (check != report.by_op.end() && (check->second.gouges > 0 || check->second.collisions > 0))
+      setups.insert(op.setup);
+  }
+  return setups;
+}
+
+// Leaves `drop` (sorted sources) out of plan.roughing, recombines and verifies. The operations left out come back in
+// order with putBack.
+struct Trial {
+  std::vector<int> drop;
+  std::vector<RoughingOperation> held;
+  VerificationReport report;
+  VerificationState state;
+};
+
+void leaveOut(PlanResult& plan, const Part& part, const ToolLibrary& library, const PlanOptions& options,
+              const PlanVerifier& verify, Trial& trial) {
+  trial.held.resize(trial.drop.size());
+  for (std::size_t i = trial.drop.size(); i-- > 0;) {  // last first, so the indices hold
+    trial.held[i] = std::move(plan.roughing.operations[trial.drop[i]]);
+    plan.roughing.operations.erase(plan.roughing.operations.begin() + trial.drop[i]);
+  }
+  combinePlan(plan, part, library, options);
+  trial.report = verify(plan, trial.state);
+}
+
+void putBack(PlanResult& plan, Trial& trial) {
+  for (std::size_t i = 0; i < trial.drop.size(); ++i)  // first first
+    plan.roughing.operations.insert(plan.roughing.operations.begin() + trial.drop[i], std::move(trial.held[i]));
+}
+
+}  // namespace
+
 void dropUselessRoughing(PlanResult& plan, const Part& part, const ToolLibrary& library, const PlanOptions& options,
                          const PlanVerifier& verify) {
   plan.useless = UselessRoughing{};
@@ -87,34 +129,58 @@ void dropUselessRoughing(PlanResult& plan, const Part& part, const ToolLibrary& 
   if (useless.empty()) return;
 
   const double roughing_removed = roughingRemoved(plan);
-  std::vector<DroppedOperation> dropped;
-  double dropped_removed = 0;
+  std::map<int, double> removed;  // by source
+  std::map<int, int> setup;       // by source
   for (int source : useless) {
-    const double removed = removedBy(plan, source);
-    dropped_removed += removed;
-    dropped.push_back(droppedBySimulation(plan.roughing.operations[source], removed, roughing_removed));
+    removed[source] = removedBy(plan, source);
+    setup[source] = plan.roughing.operations[source].setup;
   }
-  // Out of the roughing, last first so the indices hold; back in first first.
-  std::vector<RoughingOperation> held(useless.size());
-  for (std::size_t i = useless.size(); i-- > 0;) {
-    held[i] = std::move(plan.roughing.operations[useless[i]]);
-    plan.roughing.operations.erase(plan.roughing.operations.begin() + useless[i]);
+  auto removedByAll = [&](const std::vector<int>& sources) {
+    double sum = 0;
+    for (int source : sources) sum += removed[source];
+    return sum;
+  };
+  Trial all{useless, {}, {}, {}};
+  leaveOut(plan, part, library, options, verify, all);
+  std::string why = notAsClean(plan.verification, all.report, removedByAll(useless));
+  Trial* kept_trial = why.empty() ? &all : nullptr;
+  Trial some;
+  if (!why.empty() && !all.report.cancelled) {
+    // Second round: the operations after a useless one in its setup may rely on the little it took (a skin a rapid
+    // crosses); keep the useless operations of the setups where the simulation without them finds something, leave
+    // out the others.
+    const std::set<int> troubled = setupsWithFindings(plan, all.report);
+    for (int source : useless)
+      if (!troubled.count(setup[source])) some.drop.push_back(source);
+    if (!troubled.empty() && !some.drop.empty()) {
+      putBack(plan, all);
+      leaveOut(plan, part, library, options, verify, some);
+      if (notAsClean(plan.verification, some.report, removedByAll(some.drop)).empty()) {
+        kept_trial = &some;
+        plan.useless.kept = static_cast<int>(useless.size() - some.drop.size());
+        std::string listed;
+        for (int k : troubled) listed += (listed.empty() ? "" : ", ") + std::to_string(k);
+        plan.useless.kept_why = "those of setups " + listed + " kept: without all of them " + why.substr(8);
+      } else {
+        putBack(plan, some);
+        some.drop.clear();
+        all.drop.clear();  // everything is back in
+      }
+    }
   }
-  combinePlan(plan, part, library, options);
-  VerificationState state;
-  VerificationReport without = verify(plan, state);
-
-  plan.useless.kept_why = notAsClean(plan.verification, without, dropped_removed);
-  if (plan.useless.kept_why.empty()) {
+  if (kept_trial) {
     plan.useless.dropped = true;
-    plan.verification = std::move(without);
-    plan.simulation = std::move(state);
-    for (DroppedOperation& d : dropped) plan.roughing.dropped.push_back(std::move(d));
+    for (std::size_t i = 0; i < kept_trial->drop.size(); ++i)
+      plan.roughing.dropped.push_back(
+          droppedBySimulation(kept_trial->held[i], removed[kept_trial->drop[i]], roughing_removed));
+    plan.verification = std::move(kept_trial->report);
+    plan.simulation = std::move(kept_trial->state);
     return;
   }
-  plan.cancelled = plan.cancelled || without.cancelled;
-  for (std::size_t i = 0; i < useless.size(); ++i)
-    plan.roughing.operations.insert(plan.roughing.operations.begin() + useless[i], std::move(held[i]));
+  plan.useless.kept = plan.useless.found;
+  plan.useless.kept_why = why;
+  plan.cancelled = plan.cancelled || all.report.cancelled || some.report.cancelled;
+  putBack(plan, all);
   combinePlan(plan, part, library, options);
 }
 
