@@ -160,7 +160,10 @@ void dropUselessRoughing(PlanResult& plan, const Part& part, const ToolLibrary& 
         plan.useless.kept = static_cast<int>(useless.size() - some.drop.size());
         std::string listed;
         for (int k : troubled) listed += (listed.empty() ? "" : ", ") + std::to_string(k);
-        plan.useless.kept_why = "those of setups " + listed + " kept: without all of them " + why.substr(8);
+        std::string all_why = why;
+        const std::size_t them = all_why.find("without them");
+        if (them != std::string::npos) all_why.replace(them, 12, "without all of them");
+        plan.useless.kept_why = "those of setups " + listed + " kept: " + all_why;
       } else {
         putBack(plan, some);
         some.drop.clear();
