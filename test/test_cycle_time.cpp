@@ -268,17 +268,33 @@ TEST(PlanFigures, RemovedVolumePerOperationSumsToTheSimulation) {
   EXPECT_NEAR(setups, total["total_s"].get<double>(), 1e-6);
 }
 
+// The pocketed block planned at visibility level 2 without finishing, its useless roughing left in (drop_useless
+// false): the plan the useless-operation tests change and verify again.
+struct PocketPlan {
+  Part part = test::stepPart(test::pocketedBlock(Vec3(0, 0, 0), Vec3(60, 40, 20), 30, 20, 8, 4), "pocket");
+  ToolLibrary library = loadToolLibrary(kConfig + "/tools.yaml");
+  PlanOptions options;
+  PlanResult plan;
+};
+
+PocketPlan pocketPlan() {
+  PocketPlan pocket;
+  pocket.options.visibility.level = 2;
+  pocket.options.finish = false;
+  pocket.options.drop_useless = false;
+  pocket.plan = planPart(pocket.part, pocket.library, pocket.options);
+  return pocket;
+}
+
 // The first roughing operation run again right after itself removes nothing the second time: the simulation finds it
 // useless, and the plan without it is the plan as planned, as clean. A verification finding more without it puts the
 // plan back exactly.
 TEST(UselessOperations, ARoughingRunTwiceIsDroppedWhenThePlanWithoutItIsAsClean) {
-  const Part part = test::stepPart(test::pocketedBlock(Vec3(0, 0, 0), Vec3(60, 40, 20), 30, 20, 8, 4), "pocket");
-  const ToolLibrary library = loadToolLibrary(kConfig + "/tools.yaml");
-  PlanOptions options;
-  options.visibility.level = 2;
-  options.finish = false;
-  options.drop_useless = false;
-  PlanResult plan = planPart(part, library, options);
+  PocketPlan pocket = pocketPlan();
+  const Part& part = pocket.part;
+  const ToolLibrary& library = pocket.library;
+  const PlanOptions& options = pocket.options;
+  PlanResult& plan = pocket.plan;
   ASSERT_TRUE(plan.verified);
   ASSERT_FALSE(plan.roughing.operations.empty());
   EXPECT_EQ(plan.useless.found, 0) << "drop_useless false: nothing looked at";
@@ -355,13 +371,11 @@ TEST(UselessOperations, ARoughingRunTwiceIsDroppedWhenThePlanWithoutItIsAsClean)
 // Two setups each with a roughing run twice: when the simulation without both finds a collision in the first one's
 // setup only (here a verifier that says so), that setup's useless run is put back and the other setup's left out.
 TEST(UselessOperations, TheUselessOfASetupWithFindingsStayTheOthersGo) {
-  const Part part = test::stepPart(test::pocketedBlock(Vec3(0, 0, 0), Vec3(60, 40, 20), 30, 20, 8, 4), "pocket");
-  const ToolLibrary library = loadToolLibrary(kConfig + "/tools.yaml");
-  PlanOptions options;
-  options.visibility.level = 2;
-  options.finish = false;
-  options.drop_useless = false;
-  PlanResult plan = planPart(part, library, options);
+  PocketPlan pocket = pocketPlan();
+  const Part& part = pocket.part;
+  const ToolLibrary& library = pocket.library;
+  const PlanOptions& options = pocket.options;
+  PlanResult& plan = pocket.plan;
   ASSERT_TRUE(plan.verified);
   std::vector<RoughingOperation>& ops = plan.roughing.operations;
   ASSERT_GE(ops.size(), 2u);
