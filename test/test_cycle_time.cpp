@@ -292,8 +292,6 @@ PocketPlan pocketPlan() {
 TEST(UselessOperations, ARoughingRunTwiceIsDroppedWhenThePlanWithoutItIsAsClean) {
   PocketPlan pocket = pocketPlan();
   const Part& part = pocket.part;
-  const ToolLibrary& library = pocket.library;
-  const PlanOptions& options = pocket.options;
   PlanResult& plan = pocket.plan;
   ASSERT_TRUE(plan.verified);
   ASSERT_FALSE(plan.roughing.operations.empty());
@@ -303,11 +301,11 @@ TEST(UselessOperations, ARoughingRunTwiceIsDroppedWhenThePlanWithoutItIsAsClean)
   const Toolpath original = plan.toolpath;
 
   const auto verifier = [&](const PlanResult& p, VerificationState& state) {
-    return verifyToolpath(part.mesh, part.triangle_face, p.toolpath, p.tools, planVerifyOptions(part, p, library, options),
-                          &state);
+    return verifyToolpath(part.mesh, part.triangle_face, p.toolpath, p.tools,
+                          planVerifyOptions(part, p, pocket.library, pocket.options), &state);
   };
   plan.roughing.operations.insert(plan.roughing.operations.begin() + 1, plan.roughing.operations.front());
-  combinePlan(plan, part, library, options);
+  combinePlan(plan, part, pocket.library, pocket.options);
   plan.verification = verifier(plan, plan.simulation);
   EXPECT_NEAR(plan.verification.leftover_volume_mm3, as_planned.leftover_volume_mm3, 1e-6 * as_planned.stock_volume_mm3);
   const std::vector<int> useless = uselessRoughing(plan);
@@ -315,11 +313,12 @@ TEST(UselessOperations, ARoughingRunTwiceIsDroppedWhenThePlanWithoutItIsAsClean)
   EXPECT_EQ(std::find(useless.begin(), useless.end(), 0), useless.end()) << "the first run is not";
 
   PlanResult refused = plan;
-  dropUselessRoughing(refused, part, library, options, [&](const PlanResult& p, VerificationState& state) {
+  const auto one_more_collision = [&](const PlanResult& p, VerificationState& state) {
     VerificationReport report = verifier(p, state);
     ++report.collisions;
     return report;
-  });
+  };
+  dropUselessRoughing(refused, part, pocket.library, pocket.options, one_more_collision);
   EXPECT_EQ(refused.useless.found, static_cast<int>(useless.size()));
   EXPECT_FALSE(refused.useless.dropped);
   EXPECT_NE(refused.useless.kept_why.find("collisions"), std::string::npos) << refused.useless.kept_why;
@@ -334,7 +333,7 @@ TEST(UselessOperations, ARoughingRunTwiceIsDroppedWhenThePlanWithoutItIsAsClean)
   EXPECT_EQ(refused.verification.collisions, plan.verification.collisions);
 
   const std::size_t dropped_before = plan.roughing.dropped.size();
-  dropUselessRoughing(plan, part, library, options, verifier);
+  dropUselessRoughing(plan, part, pocket.library, pocket.options, verifier);
   ASSERT_TRUE(plan.useless.dropped) << plan.useless.kept_why;
   EXPECT_TRUE(plan.useless.kept_why.empty());
   ASSERT_EQ(plan.roughing.dropped.size(), dropped_before + useless.size());
@@ -373,8 +372,6 @@ TEST(UselessOperations, ARoughingRunTwiceIsDroppedWhenThePlanWithoutItIsAsClean)
 TEST(UselessOperations, TheUselessOfASetupWithFindingsStayTheOthersGo) {
   PocketPlan pocket = pocketPlan();
   const Part& part = pocket.part;
-  const ToolLibrary& library = pocket.library;
-  const PlanOptions& options = pocket.options;
   PlanResult& plan = pocket.plan;
   ASSERT_TRUE(plan.verified);
   std::vector<RoughingOperation>& ops = plan.roughing.operations;
@@ -390,7 +387,7 @@ TEST(UselessOperations, TheUselessOfASetupWithFindingsStayTheOthersGo) {
   const auto first_setup_ops = roughingIn(plan, first_setup), last_setup_ops = roughingIn(plan, last_setup);
   const auto verifier = [&](const PlanResult& p, VerificationState& state) {
     VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, p.toolpath, p.tools,
-                                               planVerifyOptions(part, p, library, options), &state);
+                                               planVerifyOptions(part, p, pocket.library, pocket.options), &state);
     if (roughingIn(p, first_setup) < first_setup_ops)  // the run the first setup's rest relies on is gone
       for (const PlanOperation& op : p.operations)
         if (op.setup == first_setup) {
@@ -400,7 +397,7 @@ TEST(UselessOperations, TheUselessOfASetupWithFindingsStayTheOthersGo) {
         }
     return report;
   };
-  combinePlan(plan, part, library, options);
+  combinePlan(plan, part, pocket.library, pocket.options);
   plan.verification = verifier(plan, plan.simulation);
   ASSERT_EQ(plan.verification.collisions, 0);
   const std::vector<int> useless = uselessRoughing(plan);
@@ -408,7 +405,7 @@ TEST(UselessOperations, TheUselessOfASetupWithFindingsStayTheOthersGo) {
   ASSERT_NE(std::find(useless.begin(), useless.end(), static_cast<int>(ops.size()) - 1), useless.end());
 
   const std::size_t dropped_before = plan.roughing.dropped.size();
-  dropUselessRoughing(plan, part, library, options, verifier);
+  dropUselessRoughing(plan, part, pocket.library, pocket.options, verifier);
   EXPECT_TRUE(plan.useless.dropped) << plan.useless.kept_why;
   EXPECT_GE(plan.useless.kept, 1);
   EXPECT_LT(plan.useless.kept, plan.useless.found);
