@@ -121,15 +121,19 @@ void pieceByPiece(const OperationLevels& levels, const Tool& tool, const Operati
   }
   // The slab's stock while pieces of it are still to come: its final stock, less what the level sweeps (the proofs
   // keep no band: link_clearance.h), plus those pieces' sweeps.
+  const std::size_t slabs = std::min(levels.slabs.size(), levels.levels.size());
+  std::vector<SlabState> finals(levels.slabs.begin(), levels.slabs.begin() + slabs);
+  for (std::size_t i = 0; i < slabs; ++i) finals[i].remaining = subtract(finals[i].remaining, levels.swept[i]);
   auto slabNow = [&](std::size_t i) {
-    SlabState slab = levels.slabs[i];
-    slab.remaining = subtract(slab.remaining, levels.swept[i]);
-    for (std::size_t k : pending[i]) slab.remaining = unite(slab.remaining, sweeps[k]);
+    if (pending[i].empty()) return finals[i];
+    SlabState slab = finals[i];
+    Region to_come;
+    for (std::size_t k : pending[i]) to_come.insert(to_come.end(), sweeps[k].begin(), sweeps[k].end());
+    slab.remaining = unite(slab.remaining, to_come);
     return slab;
   };
   LinkClearance link_clearance(tool, options.holder_margin);
-  for (std::size_t i = 0; i < levels.slabs.size() && i < levels.levels.size(); ++i)
-    link_clearance.addSlab(slabNow(i), {});
+  for (std::size_t i = 0; i < slabs; ++i) link_clearance.addSlab(slabNow(i), {});
   std::vector<ClearedLevel> cleared;
   for (std::size_t k = 0; k < order.size(); ++k) {
     const LevelPiece& piece = order[k];
@@ -146,7 +150,7 @@ void pieceByPiece(const OperationLevels& levels, const Tool& tool, const Operati
     remember(cleared, levels.levels[piece.level].z, piece.rings, reachShortfall(options));
     std::vector<std::size_t>& left = pending[piece.level];
     left.erase(std::find(left.begin(), left.end(), k));
-    if (piece.level < levels.slabs.size()) link_clearance.replaceSlab(piece.level, slabNow(piece.level), {});
+    if (piece.level < slabs) link_clearance.replaceSlab(piece.level, slabNow(piece.level), {});
   }
 }
 
