@@ -50,18 +50,20 @@ DroppedOperation droppedBySimulation(const RoughingOperation& op, double removed
   return d;
 }
 
-// Why the plan without the useless operations is not kept, or empty when it is.
-std::string notAsClean(const VerificationReport& before, const VerificationReport& after, double dropped_removed) {
-  if (after.cancelled) return "the verification without them was cancelled";
+// Why the plan without the useless operations (`them`, as the line names them) is not kept, or empty when it is.
+std::string notAsClean(const VerificationReport& before, const VerificationReport& after, double dropped_removed,
+                       const std::string& them = "them") {
+  if (after.cancelled) return "the verification without " + them + " was cancelled";
   if (after.gouges > before.gouges)
-    return "without them the simulation finds " + std::to_string(after.gouges) + " gouges (" +
+    return "without " + them + " the simulation finds " + std::to_string(after.gouges) + " gouges (" +
            std::to_string(before.gouges) + " with them)";
   if (after.collisions > before.collisions)
-    return "without them the simulation finds " + std::to_string(after.collisions) + " collisions (" +
+    return "without " + them + " the simulation finds " + std::to_string(after.collisions) + " collisions (" +
            std::to_string(before.collisions) + " with them)";
   const double allowed = before.leftover_volume_mm3 + dropped_removed;
   if (after.leftover_volume_mm3 > allowed + kVolumeSlack * std::max(1.0, before.stock_volume_mm3))
-    return format("without them the simulation leaves %.0f mm3 (%.0f mm3 with them, %.0f mm3 more allowed)",
+    return "without " + them +
+           format(" the simulation leaves %.0f mm3 (%.0f mm3 with them, %.0f mm3 more allowed)",
                   after.leftover_volume_mm3, before.leftover_volume_mm3, dropped_removed);
   return "";
 }
@@ -160,10 +162,8 @@ void dropUselessRoughing(PlanResult& plan, const Part& part, const ToolLibrary& 
         plan.useless.kept = static_cast<int>(useless.size() - some.drop.size());
         std::string listed;
         for (int k : troubled) listed += (listed.empty() ? "" : ", ") + std::to_string(k);
-        std::string all_why = why;
-        const std::size_t them = all_why.find("without them");
-        if (them != std::string::npos) all_why.replace(them, 12, "without all of them");
-        plan.useless.kept_why = "those of setups " + listed + " kept: " + all_why;
+        plan.useless.kept_why = "those of setups " + listed + " kept: " +
+                                notAsClean(plan.verification, all.report, removedByAll(useless), "all of them");
       } else {
         putBack(plan, some);
         some.drop.clear();
