@@ -96,7 +96,7 @@ void benchPart(const std::string& name, const ToolLibrary& library, const Machin
 }
 
 int benchMain(const std::vector<std::string>& args) {
-  const BenchArgs a(args, {"no-finish", "adaptive", "no-stay-down", "no-reach"}, {});
+  const Arguments a(args, {"no-finish", "adaptive", "no-stay-down", "no-reach"}, {});
   std::vector<std::string> parts;
   for (const std::string& arg : a.positional()) {
     if (arg == "all") parts.assign(std::begin(kAll), std::end(kAll));

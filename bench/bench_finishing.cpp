@@ -161,7 +161,7 @@ void bench(const std::string& name, int level, int windows) {
 }
 
 int benchMain(const std::vector<std::string>& args) {
-  const BenchArgs a(args, {}, {"level", "windows"});
+  const Arguments a(args, {}, {"level", "windows"});
   const int level = atLeast(a.integer("level", 4), 0, "--level");
   const int windows = atLeast(a.integer("windows", 400), 0, "--windows");
   std::vector<std::string> parts = a.positional();

@@ -242,8 +242,8 @@ int wholeRaster(const std::string& file, double stepover, int threads) {
 }
 
 int benchMain(const std::vector<std::string>& args) {
-  const BenchArgs a(args, {}, {"threads", "stepover"});
-  const std::vector<std::string>& p = a.positional(2);
+  const Arguments a(args, {}, {"threads", "stepover"});
+  const std::vector<std::string>& p = positionalAtMost(a, 2);
   const int threads = atLeast(a.integer("threads", 0), 0, "--threads");
   const double stepover = positive(a.number("stepover", 0.49), "--stepover");
   const std::string mode = p.empty() ? "" : p[0];
@@ -252,9 +252,9 @@ int benchMain(const std::vector<std::string>& args) {
     requireFile(p[1]);
     return wholeRaster(p[1], stepover, threads);
   }
-  if (mode == "ctc01") throw BenchUsageError("ctc01 takes no PART");
-  if (mode == "raster") throw BenchUsageError("raster needs a PART");
-  throw BenchUsageError(mode.empty() ? "ctc01 or raster expected" : "ctc01 or raster expected, not '" + mode + "'");
+  if (mode == "ctc01") throw UsageError("ctc01 takes no PART");
+  if (mode == "raster") throw UsageError("raster needs a PART");
+  throw UsageError(mode.empty() ? "ctc01 or raster expected" : "ctc01 or raster expected, not '" + mode + "'");
 }
 
 }  // namespace

@@ -135,10 +135,10 @@ void benchPart(const std::string& path, const ToolLibrary& library, bool simulat
 }
 
 int benchMain(const std::vector<std::string>& args) {
-  const BenchArgs a(args, {"simulate"}, {"resolution"});
+  const Arguments a(args, {"simulate"}, {"resolution"});
   const bool simulate = a.flag("simulate");
   const double resolution = a.number("resolution", 0);  // the lattice: 0 automatic
-  if (resolution < 0) throw BenchUsageError("--resolution must not be negative");
+  if (resolution < 0) throw UsageError("--resolution must not be negative");
   std::vector<std::string> parts;
   for (const std::string& name : a.positional())
     parts.push_back(name.find('/') == std::string::npos ? kParts + "/" + name : name);

@@ -26,7 +26,7 @@ void printFaces(const Part& part) {
 }
 
 int benchMain(const std::vector<std::string>& args) {
-  BenchArgs(args, {}, {}).positional(0);  // no arguments: any is a usage mistake
+  positionalAtMost(Arguments(args, {}, {}), 0);  // no arguments: any is a usage mistake
   std::printf("loading: triangles, faces, seconds (load + repair + faces + adjacency)\n");
   for (const char* name : {"nist_ctc_01_asme1_rd.stp", "nist_ctc_02_asme1_rc.stp", "ANC101.stp", "featuretype.STEP",
                            "ktoolcav.stl", "mount_rush.stl", "Ailette001Solid-nohole-decimated-smoothed.stl",

@@ -87,8 +87,8 @@ void benchPlan(const std::string& name, const Part& part, const SetupPlan& setup
 }
 
 int benchMain(const std::vector<std::string>& args) {
-  const BenchArgs a(args, {"one-setup"}, {});
-  std::vector<std::string> parts = a.positional(1);
+  const Arguments a(args, {"one-setup"}, {});
+  std::vector<std::string> parts = positionalAtMost(a, 1);
   if (parts.empty() || parts[0] == "all") parts.assign(std::begin(kAll), std::end(kAll));
   for (const std::string& name : parts) requireFile(kParts + "/" + name);
   const bool one_setup = a.flag("one-setup");

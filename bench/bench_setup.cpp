@@ -76,7 +76,8 @@ void benchPart(const std::string& name, int level) {
 }
 
 int benchMain(const std::vector<std::string>& args) {
-  const std::vector<std::string> p = BenchArgs(args, {}, {}).positional(2);
+  const Arguments a(args, {}, {});
+  const std::vector<std::string>& p = positionalAtMost(a, 2);
   const int level = p.size() > 0 ? atLeast(parseInteger(p[0], "LEVEL"), 0, "LEVEL") : 4;
   const std::string only = p.size() > 1 ? p[1] : "";
   const char* parts[] = {"nist_ctc_01_asme1_rd.stp", "nist_ctc_02_asme1_rc.stp", "ANC101.stp", "featuretype.STEP",

@@ -89,8 +89,8 @@ Toolpath raster(const Mesh& part, const Tool& tool, int lines) {
 }
 
 int benchMain(const std::vector<std::string>& args) {
-  const BenchArgs a(args, {}, {"threads", "lines"});
-  const std::vector<std::string>& p = a.positional(1);
+  const Arguments a(args, {}, {"threads", "lines"});
+  const std::vector<std::string>& p = positionalAtMost(a, 1);
   const std::string file = p.empty() ? std::string(ART2PART_SHARED_PARTS) + "/nist_ctc_01_asme1_rd.stp" : p[0];
   const int threads = atLeast(a.integer("threads", 0), 0, "--threads");
   const int lines = atLeast(a.integer("lines", 100), 1, "--lines");

@@ -36,7 +36,7 @@ double secondsPerLookup(const DirectionSet& set, int count) {
 const char* name(SphereBase base) { return base == SphereBase::Tetrahedron ? "tetrahedron" : "icosahedron"; }
 
 int benchMain(const std::vector<std::string>& args) {
-  BenchArgs(args, {}, {}).positional(0);  // no arguments: any is a usage mistake
+  positionalAtMost(Arguments(args, {}, {}), 0);  // no arguments: any is a usage mistake
   std::printf("cell area ratio (largest / smallest)\n%-6s %22s %22s\n", "level", "tetrahedron (cells)",
               "icosahedron (cells)");
   for (int level = 0; level <= 7; ++level) {

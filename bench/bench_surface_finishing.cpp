@@ -128,8 +128,8 @@ void benchFinishing(const std::string& name, const Part& part, const Vec3& dir, 
 }
 
 int benchMain(const std::vector<std::string>& args) {
-  const BenchArgs a(args, {"verify"}, {});
-  const std::vector<std::string>& p = a.positional(1);
+  const Arguments a(args, {"verify"}, {});
+  const std::vector<std::string>& p = positionalAtMost(a, 1);
   const std::string only = p.empty() ? "all" : p[0];
   const bool verify = a.flag("verify");
   const std::vector<std::string> parts = {"mount_rush.stl", "Ailette001Solid-nohole-decimated-smoothed.stl",

@@ -304,15 +304,16 @@ void judge(const std::string& only, int level, int samples) {
 }
 
 int benchMain(const std::vector<std::string>& args) {
-  const std::vector<std::string> p = BenchArgs(args, {}, {}).positional(4);
+  const Arguments a(args, {}, {});
+  const std::vector<std::string>& p = positionalAtMost(a, 4);
   const std::string what = p.size() > 0 ? p[0] : "all";
   // The arguments after the figure's name: how many it takes, then each checked before any work starts.
   const std::map<std::string, std::size_t> takes{{"speed", 1}, {"scaling", 0}, {"accuracy", 2}, {"judge", 3}, {"all", 2}};
-  if (!takes.count(what)) throw BenchUsageError("unknown figure '" + what + "'");
-  if (p.size() > 1 + takes.at(what)) throw BenchUsageError("unexpected argument '" + p[1 + takes.at(what)] + "'");
+  if (!takes.count(what)) throw UsageError("unknown figure '" + what + "'");
+  positionalAtMost(a, 1 + takes.at(what));
   const std::string variant = what == "speed" && p.size() > 1 ? p[1] : "";
   if (!variant.empty() && variant != "default" && variant != "ray")
-    throw BenchUsageError("speed takes default or ray, not '" + variant + "'");
+    throw UsageError("speed takes default or ray, not '" + variant + "'");
   const std::string part = what != "speed" && p.size() > 1 ? p[1] : "";
   if (!part.empty()) requireOneOf(part, kAllParts);
   const int level = p.size() > 2 ? atLeast(parseInteger(p[2], "LEVEL"), 0, "LEVEL") : 4;

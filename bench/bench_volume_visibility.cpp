@@ -42,8 +42,9 @@ void run(const std::string& file, double voxel, int level) {
 }
 
 int benchMain(const std::vector<std::string>& args) {
-  const std::vector<std::string> p = BenchArgs(args, {}, {}).positional(3);
-  if (p.size() == 1) throw BenchUsageError("PART needs VOXEL_MM");
+  const Arguments a(args, {}, {});
+  const std::vector<std::string>& p = positionalAtMost(a, 3);
+  if (p.size() == 1) throw UsageError("PART needs VOXEL_MM");
   if (p.size() >= 2) {
     const double voxel = positive(parseNumber(p[1], "VOXEL_MM"), "VOXEL_MM");
     const int level = p.size() > 2 ? atLeast(parseInteger(p[2], "LEVEL"), 0, "LEVEL") : 4;

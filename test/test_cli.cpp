@@ -8,6 +8,7 @@
 #include <fstream>
 #include <cstdio>
 #include <filesystem>
+#include <utility>
 #include <nlohmann/json.hpp>
 #include <sys/wait.h>
 
@@ -110,6 +111,29 @@ TEST(Cli, MisuseGivesUsageAndExitTwo) {
   EXPECT_EQ(run("frobnicate").status, 2);
   EXPECT_EQ(run("visibility " + kExample).status, 2) << "no --out";
   EXPECT_EQ(run("visibility " + kExample + " --out /tmp/x --level 9").status, 1) << "level out of range";
+}
+
+// A number is all of its text and finite, a whole number is written as one and fits an int: else a usage mistake that
+// names the option and the text, found before the part is read (the part here is not there: exit 1 once they pass).
+TEST(Cli, IllFormedNumbersAreUsageMistakes) {
+  const std::string missing = test::tempDir() + "/missing.stl";
+  const std::string visibility = "visibility " + missing + " --out " + test::tempDir() + "/vis";
+  const std::pair<std::string, std::string> cases[] = {
+      {"info " + missing + " --tolerance 1mm", "--tolerance needs a number, not '1mm'"},
+      {"info " + missing + " --tolerance x", "--tolerance needs a number, not 'x'"},
+      {"info " + missing + " --tolerance inf", "--tolerance needs a number, not 'inf'"},
+      {visibility + " --threads 2.5", "--threads needs a whole number, not '2.5'"},
+      {visibility + " --level 4.0", "--level needs a whole number, not '4.0'"},
+      {visibility + " --samples 1e3", "--samples needs a whole number, not '1e3'"},
+      {visibility + " --threads 99999999999", "--threads needs a whole number, not '99999999999'"},
+  };
+  for (const auto& [arguments, mistake] : cases) {
+    const CliRun r = run(arguments);
+    EXPECT_EQ(r.status, 2) << arguments << "\n" << r.err;
+    EXPECT_EQ(r.err.rfind("art2part: " + mistake + "\n", 0), 0u) << r.err;
+  }
+  EXPECT_EQ(run("info " + missing + " --tolerance 0.5").status, 1);
+  EXPECT_EQ(run(visibility + " --threads 2 --level 1").status, 1);
 }
 
 // `art2part COMMAND --help` is a request, not a mistake: that command's usage alone on stdout, exit 0, and nothing run

@@ -5,6 +5,26 @@
 
 namespace art2part {
 
+double parseNumber(const std::string& text, const std::string& what) {
+  try {
+    std::size_t used = 0;
+    const double v = std::stod(text, &used);
+    if (used == text.size() && std::isfinite(v)) return v;
+  } catch (const std::exception&) {  // not a number at all, or out of a double's range
+  }
+  throw UsageError(what + " needs a number, not '" + text + "'");
+}
+
+int parseInteger(const std::string& text, const std::string& what) {
+  try {
+    std::size_t used = 0;
+    const int v = std::stoi(text, &used);
+    if (used == text.size()) return v;
+  } catch (const std::exception&) {  // not a number at all, or out of an int's range
+  }
+  throw UsageError(what + " needs a whole number, not '" + text + "'");
+}
+
 Arguments::Arguments(const std::vector<std::string>& args, const std::set<std::string>& flags,
                      const std::set<std::string>& options) {
   for (std::size_t i = 0; i < args.size(); ++i) {
@@ -31,22 +51,11 @@ std::string Arguments::value(const std::string& name, const std::string& fallbac
 }
 
 double Arguments::number(const std::string& name, double fallback) const {
-  if (!has(name)) return fallback;
-  const std::string text = value(name);
-  try {
-    std::size_t used = 0;
-    const double v = std::stod(text, &used);
-    if (used != text.size() || !std::isfinite(v)) throw std::invalid_argument(text);
-    return v;
-  } catch (const std::exception&) {
-    throw UsageError("--" + name + " needs a number, not '" + text + "'");
-  }
+  return has(name) ? parseNumber(value(name), "--" + name) : fallback;
 }
 
 int Arguments::integer(const std::string& name, int fallback) const {
-  const double v = number(name, fallback);
-  if (v != std::floor(v)) throw UsageError("--" + name + " needs a whole number");
-  return static_cast<int>(v);
+  return has(name) ? parseInteger(value(name), "--" + name) : fallback;
 }
 
 std::string Arguments::requirePositional(std::size_t count, const std::string& names) const {
