@@ -143,3 +143,20 @@ TEST(InProcessStock, StockTwoCellsThickIsProvenAndThinnerIsNot) {
   }
 }
 
+
+TEST(InProcessStock, CutSlabsHoldTheFacesACutLeftNotTheRawOnes) {
+  // The first test's block and part, the top cleared only over x <= 23 (a 10 mm mill's centres to x = 18).
+  const Part part = partFromMesh(test::box(Vec3(10, 10, 0), Vec3(30, 30, 10)), "block");
+  const Mesh stock = test::box(Vec3(0, 0, 0), Vec3(40, 40, 20));
+  InProcessStock in_process(part, stock, 400, 2.0);  // 2 mm cells: doubt 1.73 + 4 mm
+  SetupFrame top;
+  const std::vector<std::pair<double, double>> slabs = {{9, 12}, {0, 3}};
+  for (const Region& r : in_process.cutSlabs(top, slabs)) EXPECT_TRUE(regionEmpty(r)) << "nothing cut yet";
+  in_process.remove(raster(-6, 18, -6, 46, 10), {flat10()});
+  const std::vector<Region> cuts = in_process.cutSlabs(top, slabs);
+  // The cut floor (z = 10 and its film) and the cut wall at x = 23 are in the slab round them, grown by the doubt.
+  for (double x : {1.0, 12.0, 22.0, 26.0}) EXPECT_TRUE(inside(cuts[0], x, 20)) << x;
+  // The block's raw faces are no cut: its top beyond the wall, its side at x = 40, its bottom.
+  EXPECT_FALSE(inside(cuts[0], 36, 20));
+  EXPECT_TRUE(regionEmpty(cuts[1])) << regionArea(cuts[1]);  // the floor's film is 7 mm above
+}

@@ -53,17 +53,26 @@ class InProcessStock {
   // stock beyond it is proven, is not proven: a setup's levels near the part nest (roughing.cpp, nestCentres).
   std::vector<Region> provenSlabs(const SetupFrame& frame, const std::vector<std::pair<double, double>>& slabs) const;
 
+  // Where the faces the operations so far cut lie in each slab (within doubt() of it along the frame's z), projected
+  // and grown by doubt(): the raw stock's faces and the part's are not in it.
+  std::vector<Region> cutSlabs(const SetupFrame& frame, const std::vector<std::pair<double, double>>& slabs) const;
+
+  // mm: proven stock within this of the part's skin (the part with the allowance) and of a cut face may be no stock:
+  // the film remove leaves on what it cut (half a cell's diagonal) and the proof's growth back (two cells).
+  double doubt() const;
   double cell() const;      // the lattice's largest spacing, mm
   double volume() const;    // mm^3 of material left, part included
 
  private:
+  enum class Projection { All, Proven, Cuts };
   std::vector<Region> project(const SetupFrame& frame, const std::vector<std::pair<double, double>>& slabs,
-                              bool proven) const;
+                              Projection what) const;
   bool stockAround(const Vec3& p) const;
 
   static constexpr double kPartClearanceCells = 1;  // stockAround: no part nearer along any axis
 
   Stock stock_;
+  Stock raw_;  // the stock before any operation: its faces are exact, no film on them
   std::unique_ptr<MeshDexels> part_;
   std::unique_ptr<PartDistance> distance_;
   std::map<std::string, ToolSolid> solids_;

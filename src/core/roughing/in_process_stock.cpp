@@ -93,6 +93,13 @@ Region rasterRegion(const Raster& r, int grow) {
   return regionFromPolygons(rects);
 }
 
+// A span end `t` that no span of the raw stock's ray `raw` ends at: a face an operation cut (untouched ends
+// keep their value exactly).
+bool cutEnd(double t, const SpanList& raw) {
+  auto it = std::lower_bound(raw.begin(), raw.end(), t, [](const Span& s, double v) { return s.hi < v; });
+  return it == raw.end() || (it->lo != t && it->hi != t);
+}
+
 }  // namespace
 
 InProcessStock::InProcessStock(const Part& solid, const Mesh& stock, long rays, double coarsest, long max_rays) {
@@ -103,12 +110,15 @@ InProcessStock::InProcessStock(const Part& solid, const Mesh& stock, long rays, 
   part_ = std::make_unique<MeshDexels>(solid.mesh, lattice);
   stock_ = meshStock(MeshDexels(stock, lattice));
   addSolid(stock_, *part_);
+  raw_ = stock_;
   distance_ = std::make_unique<PartDistance>(solid.mesh);
 }
 
 InProcessStock::~InProcessStock() = default;
 
 double InProcessStock::cell() const { return stock_.lattice.spacing.maxCoeff(); }
+
+double InProcessStock::doubt() const { return 0.5 * stock_.lattice.spacing.norm() + 2 * cell(); }
 
 double InProcessStock::volume() const { return stock_.volume(); }
 
@@ -159,12 +169,17 @@ void InProcessStock::remove(const Toolpath& path, const std::vector<Tool>& tools
 
 std::vector<Region> InProcessStock::slabs(const SetupFrame& frame,
                                           const std::vector<std::pair<double, double>>& slabs) const {
-  return project(frame, slabs, false);
+  return project(frame, slabs, Projection::All);
 }
 
 std::vector<Region> InProcessStock::provenSlabs(const SetupFrame& frame,
                                                 const std::vector<std::pair<double, double>>& slabs) const {
-  return project(frame, slabs, true);
+  return project(frame, slabs, Projection::Proven);
+}
+
+std::vector<Region> InProcessStock::cutSlabs(const SetupFrame& frame,
+                                             const std::vector<std::pair<double, double>>& slabs) const {
+  return project(frame, slabs, Projection::Cuts);
 }
 
 // Stock at `p`: material a cell every way along the three axes (on the nearest ray of each family, one span holds
@@ -193,7 +208,10 @@ bool InProcessStock::stockAround(const Vec3& p) const {
 }
 
 std::vector<Region> InProcessStock::project(const SetupFrame& frame,
-                                            const std::vector<std::pair<double, double>>& slabs, bool proven) const {
+                                            const std::vector<std::pair<double, double>>& slabs,
+                                            Projection what) const {
+  const bool proven = what == Projection::Proven;
+  const double doubt_band = doubt();
   const DexelLattice& lattice = stock_.lattice;
   // The raster spans the lattice box's projection; its cells as large as the lattice's.
   Raster proto;
@@ -238,6 +256,19 @@ std::vector<Region> InProcessStock::project(const SetupFrame& frame,
         const Vec3 ray0 = lattice.rayOrigin(axis, iu, iv);
         const Vec3 d = ray0 - frame.origin;
         const Vec3 origin(d.dot(frame.x), d.dot(frame.y), d.dot(frame.z));  // the ray at t = 0, in the frame
+        if (what == Projection::Cuts) {  // each cut end on the slabs within the doubt of it
+          const SpanList& raw = raw_.ray(axis, lattice.rayIndex(axis, iu, iv));
+          for (const Span& span : spans)
+            for (const double t : {span.lo, span.hi}) {
+              if (!cutEnd(t, raw)) continue;
+              const Vec3 at = origin + t * along;
+              auto first = std::partition_point(order.begin(), order.end(),
+                                                [&](std::size_t i) { return slabs[i].first - doubt_band > at.z(); });
+              for (auto it = first; it != order.end() && slabs[*it].first + tallest + doubt_band >= at.z(); ++it)
+                if (at.z() <= slabs[*it].second + doubt_band) rasters[*it].mark(at.x(), at.y());
+            }
+          continue;
+        }
         for (const Span& span : spans) {
           const double za = origin.z() + span.lo * along.z(), zb = origin.z() + span.hi * along.z();
           const double zlo = std::min(za, zb), zhi = std::max(za, zb);
@@ -298,7 +329,10 @@ std::vector<Region> InProcessStock::project(const SetupFrame& frame,
   out.reserve(slabs.size());
   // Proven stock grows back by two cells: its proof stops a cell inside the material, and a marked cell stands for a
   // point in it.
-  for (const Raster& r : rasters) out.push_back(rasterRegion(r, proven ? 2 : 1));
+  const int grow = what == Projection::Proven ? 2
+                   : what == Projection::Cuts  ? static_cast<int>(std::ceil(doubt_band / proto.cell))
+                                               : 1;
+  for (const Raster& r : rasters) out.push_back(rasterRegion(r, grow));
   return out;
 }
 

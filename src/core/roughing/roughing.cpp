@@ -53,33 +53,62 @@ struct LevelDraft {
   Region forbidden;  // where no centre may go: the part, and shank and holder against the stock left above
   ClearingLevel clear;
   Region cleared;    // what its centres clear: clear.centre grown by the radius less kClearedInsetMm
+  Region doubtful;   // proven stock left out of the target as what may be the earlier setups' film round the skin
 };
 
-// A later setup's main pass targets the stock the in-process model proves, which leaves near the part (within a cell
-// of it, with the allowance and the model's film) a remnant that a level above does not take and a level below, its
-// own stock proven beside it, sweeps under: its flutes would cut it deeper than the step-down. So, bottom up, each
-// level's centre takes in those of the levels below that lie within `band` of its forbidden region (where that
-// remnant is) and whose disc would meet stock in its slab; never into the forbidden region nor the part's shadow.
+// The centres that clear `target` at level z: within the radius and `beyond` of it, out of `forbidden`. A check on
+// the grown region: no centre may lie in the shadow itself. Where one does (the grown region lost a piece of the
+// shadow: seen on CTC-02, setup 2.8 deg off z, tips 27 mm deep in the part), the level takes the shadow grown
+// directly (counted in `direct_levels`).
+Region levelCentres(const Region& target, const Region& forbidden, const Region& shadow, double r, double beyond,
+                    double allowance, int& direct_levels) {
+  if (regionEmpty(target)) return {};
+  Region centre = dropSlivers(subtract(offsetRegion(target, r + beyond), forbidden), kCentreSliverMm2);
+  if (!regionEmpty(centre) && !regionEmpty(intersect(centre, shadow))) {
+    ++direct_levels;
+    centre = dropSlivers(subtract(centre, offsetRegion(shadow, r + allowance)), kCentreSliverMm2);
+  }
+  return centre;
+}
+
+// Bottom up, each level of an operation over an in-process stock takes in what keeps the column over every cut of
+// the levels below clear, never into the forbidden region nor the part's shadow:
+// - the stock in doubt it left out (LevelDraft::doubtful) that the discs of the levels below reach: their flutes
+//   would take it from under, deeper than the step-down;
+// - with `band` > 0 (a main pass, which targets the stock the model proves and so leaves near the part, within a
+//   cell of it with the allowance and the film, a remnant that a level above does not take and a level below, its
+//   own stock proven beside it, sweeps under), the centres of the levels below that lie within `band` of its
+//   forbidden region (where that remnant is) and whose disc would meet stock in its slab.
 // The columns stay unproven elsewhere (film on faces cut far from the part): such levels prove their links and
 // descents by the stock model (ClearingLevel::column_clear and descents_clear false).
-void nestCentres(std::vector<LevelDraft>& drafts, const ShadowStack& shadows, double r, double allowance,
-                 double band, RoughingOperation& op) {
-  Region below;  // the centres of the levels below
+void nestCentres(std::vector<LevelDraft>& drafts, const ShadowStack& shadows, double r, double beyond,
+                 double allowance, double band, RoughingOperation& op) {
+  Region below, reach;  // the centres of the levels below, and their discs
   for (auto it = drafts.rbegin(); it != drafts.rend(); ++it) {
     ClearingLevel& clear = it->clear;
-    if (!regionEmpty(below)) {
-      Region add = intersect(below, offsetRegion(it->stock, r + kAirGapMm));
-      if (!regionEmpty(add)) add = subtract(intersect(add, offsetRegion(it->forbidden, band)), it->forbidden);
-      if (!regionEmpty(add) && !regionEmpty(intersect(add, shadows.at(clear.z)))) {
-        ++op.direct_levels;
-        add = subtract(add, offsetRegion(shadows.at(clear.z), r + allowance));
-      }
-      if (!regionEmpty(add)) {
-        clear.centre = dropSlivers(unite(clear.centre, add), kCentreSliverMm2);
-        it->cleared = offsetRegion(clear.centre, r - kClearedInsetMm);
-      }
+    const Region& shadow = shadows.at(clear.z);
+    Region add;
+    if (!regionEmpty(reach) && !regionEmpty(it->doubtful)) {
+      const Region reached = intersect(it->doubtful, reach);
+      add = levelCentres(reached, it->forbidden, shadow, r, beyond, allowance, op.direct_levels);
     }
+    if (band > 0 && !regionEmpty(below)) {
+      Region nested = intersect(below, offsetRegion(it->stock, r + kAirGapMm));
+      if (!regionEmpty(nested))
+        nested = subtract(intersect(nested, offsetRegion(it->forbidden, band)), it->forbidden);
+      if (!regionEmpty(nested) && !regionEmpty(intersect(nested, shadow))) {
+        ++op.direct_levels;
+        nested = subtract(nested, offsetRegion(shadow, r + allowance));
+      }
+      add = unite(add, nested);
+    }
+    if (!regionEmpty(add)) {
+      clear.centre = dropSlivers(unite(clear.centre, add), kCentreSliverMm2);
+      it->cleared = offsetRegion(clear.centre, r - kClearedInsetMm);
+    }
+    if (regionEmpty(clear.centre)) continue;
     below = unite(below, clear.centre);
+    reach = unite(reach, offsetRegion(clear.centre, r));
   }
 }
 
@@ -278,13 +307,16 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
   std::vector<StockLeft> left_above;
   std::vector<Region> in_process_slabs;  // what earlier setups left in each slab: all that may be there
   std::vector<Region> in_process_proven;  // what the model proves is there: to be cut
+  std::vector<Region> in_process_cuts;    // near the faces earlier setups cut: proven stock there may be film
   if (in_process) {
     std::vector<std::pair<double, double>> extents;
     double above = g.stock_top;
     for (const RoughingLevel& level : levels) extents.emplace_back(level.z, above), above = level.z;
     in_process_slabs = in_process->slabs(setup.frame, extents);
     in_process_proven = in_process->provenSlabs(setup.frame, extents);
+    in_process_cuts = in_process->cutSlabs(setup.frame, extents);
   }
+  const double beyond = before ? kRestCentreBeyondStockMm : kCentreBeyondStockMm;  // centres beyond the target
   double top = g.stock_top;
   const std::string what = op.kind + ", " + tool.id + ", level ";
   for (RoughingLevel& level : levels) {
@@ -303,13 +335,20 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
       const Region* left = beforeRemaining(*before, z, top);
       stock = left ? intersect(stock, *left) : Region{};
     }
-    // What this operation is to remove: all the stock (that earlier setups' model proves there), or for a rest pass
-    // what of it lies beyond the allowance. Shanks, holders and links keep clear of all of `stock`.
+    // What this operation is to remove: all the stock (that earlier setups' model proves there, less what lies within
+    // its doubt of both the skin and a face they cut: the stairs and film they left round the part, which a pass
+    // would trace at every level for next to nothing), or for a rest pass what of it lies beyond the allowance.
+    // Shanks, holders and links keep clear of all of `stock`.
+    const Region& skin = part_with_allowance.at(z, {});
     const Region proven = in_process ? intersect(stock, in_process_proven[index]) : stock;
-    Region target = proven;
+    Region doubtful;
+    if (in_process) {
+      doubtful = intersect(proven, intersect(offsetRegion(skin, in_process->doubt()), in_process_cuts[index]));
+      if (before) doubtful = subtract(doubtful, skin);
+    }
+    Region target = subtract(proven, doubtful);
     if (before) {
-      const Region& skin = part_with_allowance.at(z, {});
-      const Region beyond_skin = subtract(proven, skin);
+      const Region beyond_skin = subtract(target, skin);
       target = dropSlivers(offsetRegion(offsetRegion(beyond_skin, -kRestTargetOpeningMm), kRestTargetOpeningMm),
                            kRestTargetSliverMm2);
     }
@@ -324,26 +363,18 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
     clear.descents_clear = in_process == nullptr;
     if (!by_engagement) clear.stepover = slabStepover(tool, clearing.stepover, top - z);
     else clear.engagement_deg = slabEngagement(tool, top - z);
-    const double beyond = before ? kRestCentreBeyondStockMm : kCentreBeyondStockMm;
-    if (!regionEmpty(target))
-      clear.centre = dropSlivers(subtract(offsetRegion(target, r + beyond), forbidden), kCentreSliverMm2);
-    // A check on the grown region: no centre may lie in the shadow itself. Where one does (the grown region lost a
-    // piece of the shadow: seen on CTC-02, setup 2.8 deg off z, tips 27 mm deep in the part), this level takes the
-    // shadow grown directly.
-    if (!regionEmpty(clear.centre) && !regionEmpty(intersect(clear.centre, shadows.at(z)))) {
-      ++op.direct_levels;
-      clear.centre = dropSlivers(subtract(clear.centre, offsetRegion(shadows.at(z), r + allowance)), kCentreSliverMm2);
-    }
+    clear.centre = levelCentres(target, forbidden, shadows.at(z), r, beyond, allowance, op.direct_levels);
     if (before && options.rest.least_target_mm2 > 0)  // only where its sweep meets stock it is to remove
       clear.centre = piecesReaching(clear.centre, target, r - kClearedInsetMm, options.rest.least_target_mm2);
     // The levels below see the stock this one leaves (conservative: nesting only adds to its centre).
     Region cleared = offsetRegion(clear.centre, r - kClearedInsetMm);
     drafts_left.push_back(subtract(stock, cleared));
     left_above.push_back({top, &drafts_left.back()});
-    drafts.push_back({stock, proven, forbidden, std::move(clear), std::move(cleared)});
+    drafts.push_back({stock, proven, forbidden, std::move(clear), std::move(cleared), std::move(doubtful)});
     top = z;
   }
-  if (in_process && !before) nestCentres(drafts, shadows, r, allowance, kNestBandCells * in_process->cell(), op);
+  if (in_process)
+    nestCentres(drafts, shadows, r, beyond, allowance, before ? 0.0 : kNestBandCells * in_process->cell(), op);
   for (std::size_t index = 0; index < drafts.size(); ++index) {
     LevelDraft& draft = drafts[index];
     RoughingLevel& level = levels[index];
