@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <thread>
 
 #include "art2part/geometry/part.h"
 #include "art2part/roughing/forbidden_region.h"
@@ -276,4 +277,26 @@ TEST(ForbiddenRegion, CoversTheShadowOfAPartSeenAHairOffItsAxis) {
   frame.y = Vec3(-0.0006987470723531331, 0.9993914338032633, 0.03487511710642036);
   frame.z = Vec3(-0.03487826274237065, -0.03487826274237065, 0.9987827659587186);
   EXPECT_EQ(levelsMissed(part, frame), 0);
+}
+
+// The roughing stage's diagnostic of Clipper failures counts what its own thread met while it planned: not a
+// process-wide counter read as a difference, which a plan on another thread (two goals in a node) would add to.
+TEST(RegionFailureTally, CountsThisThreadsFailuresAndNests) {
+  RegionFailureTally::countFailure();  // no tally open: counted nowhere
+  const RegionFailureTally outer;
+  RegionFailureTally::countFailure();
+  {
+    const RegionFailureTally inner;
+    RegionFailureTally::countFailure();
+    RegionFailureTally::countFailure();
+    std::thread other([] {
+      const RegionFailureTally own;
+      RegionFailureTally::countFailure();
+      EXPECT_EQ(own.count(), 1);
+    });
+    other.join();
+    EXPECT_EQ(inner.count(), 2);
+    EXPECT_EQ(outer.count(), 1);
+  }
+  EXPECT_EQ(outer.count(), 3) << "the inner tally's count goes to the one it was opened in";
 }

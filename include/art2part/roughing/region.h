@@ -45,9 +45,22 @@ Region dropSlivers(const Region& region, double min_area_mm2);
 Region fillSmallHoles(const Region& region, double max_area_mm2);
 
 double regionArea(const Region& region);  // mm^2, holes subtracted
-// Boolean operations Clipper reported as failed since the program started (their results are unreliable): a
-// diagnostic the roughing stage reports.
-long regionFailures();
+// Counts the boolean operations and offsets Clipper reported as failed (their results are unreliable) on this thread
+// while it lives: a diagnostic the roughing stage reports. Tallies nest: an inner one's count goes to the one it
+// was opened in when it closes. Not copyable; open and close it on one thread.
+class RegionFailureTally {
+ public:
+  RegionFailureTally();
+  ~RegionFailureTally();
+  RegionFailureTally(const RegionFailureTally&) = delete;
+  RegionFailureTally& operator=(const RegionFailureTally&) = delete;
+  long count() const { return count_; }
+  static void countFailure();  // a failure on this thread: to its innermost tally, if any
+
+ private:
+  long count_ = 0;
+  RegionFailureTally* outer_;
+};
 bool regionEmpty(const Region& region);
 // Inside or on the boundary.
 bool regionContains(const Region& region, const Point2& p);

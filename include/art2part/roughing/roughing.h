@@ -170,7 +170,7 @@ struct RoughingPlan {
   double seconds = 0;
   int contours = 0;           // rings of centre regions over all levels
   int closed_open_mesh_edges = 0;  // the part's mesh was open: the edges of its boundary, closed (solid_closure.h)
-  long region_failures = 0;   // Clipper operations that reported failure while planning (regionFailures())
+  long region_failures = 0;   // Clipper operations that reported failure while planning (RegionFailureTally)
   int direct_levels = 0;      // levels over all operations whose grown forbidden region missed part of the shadow
   bool cancelled = false;     // the progress sink asked to stop: the setups finished before it are kept
 };

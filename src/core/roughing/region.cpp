@@ -1,7 +1,6 @@
 #include "art2part/roughing/region.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <utility>
 
@@ -23,7 +22,7 @@ Point2 fromRegionPoint(const IntPoint& p) {
 
 namespace {
 
-std::atomic<long> clipper_failures{0};
+thread_local RegionFailureTally* innermost_tally = nullptr;
 
 bool execute(const Region& a, const Region& b, ClipperLib::ClipType type, Region& out) {
   ClipperLib::Clipper clipper;
@@ -61,7 +60,7 @@ Region evenOdd(const Region& region) {
 // Clipper 6.4 gives up, now and then, on edges it cannot order at an intersection (Execute returns false and the
 // result is empty: a union that loses everything), or returns rings of the wrong sense (see wellFormed). Retried with
 // vertices closer than 0.2 um merged, then on a grid of 1 um; a result still ill-formed is taken by the even-odd
-// rule. A failure left after that is counted (regionFailures) and the result is empty or as Clipper gave it.
+// rule. A failure left after that is counted (RegionFailureTally) and the result is empty or as Clipper gave it.
 Region clip(const Region& a, const Region& b, ClipperLib::ClipType type) {
   Region out;
   if (execute(a, b, type, out) && wellFormed(out)) return out;
@@ -79,7 +78,7 @@ Region clip(const Region& a, const Region& b, ClipperLib::ClipType type) {
     Region repaired = evenOdd(out);
     if (wellFormed(repaired)) return repaired;
   }
-  ++clipper_failures;
+  RegionFailureTally::countFailure();
   return out;
 }
 
@@ -121,7 +120,16 @@ Region regionFromPolygons(const std::vector<Ring>& polygons) {
   return clip(paths, {}, ClipperLib::ctUnion);
 }
 
-long regionFailures() { return clipper_failures.load(); }
+RegionFailureTally::RegionFailureTally() : outer_(innermost_tally) { innermost_tally = this; }
+
+RegionFailureTally::~RegionFailureTally() {
+  innermost_tally = outer_;
+  if (outer_) outer_->count_ += count_;
+}
+
+void RegionFailureTally::countFailure() {
+  if (innermost_tally) ++innermost_tally->count_;
+}
 
 std::vector<Ring> regionRings(const Region& region) {
   std::vector<Ring> rings;
@@ -199,7 +207,7 @@ Region offsetRegion(const Region& given, double mm, double arc_tolerance) {
     clean = outerRingsFirst(clean);
     out = grow(clean);
     if (!out.empty() && !wellFormed(out)) out = evenOdd(out);
-    if ((out.empty() && lost) || !wellFormed(out)) ++clipper_failures;
+    if ((out.empty() && lost) || !wellFormed(out)) RegionFailureTally::countFailure();
   }
   return out;
 }

@@ -184,7 +184,7 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
   RoughingPlan plan;
   // An open mesh is roughed as the solid it closes (solid_closure.h), which the simulation checks against too:
   // otherwise every setup from its open side would clear up to the surface's back.
-  const long failures_before = regionFailures();
+  const RegionFailureTally failures;
   SolidClosure closure;
   const Part part = machiningSolid(given, &closure);
   plan.closed_open_mesh_edges = closure.boundary_edges;
@@ -320,7 +320,7 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
     for (const RoughingLevel& l : plan.operations[i].levels) plan.contours += l.rings;
     plan.direct_levels += plan.operations[i].direct_levels;
   }
-  plan.region_failures = regionFailures() - failures_before;
+  plan.region_failures = failures.count();
   plan.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!plan.cancelled) reportProgress(progress, "roughing", 1.0, "roughing done", levels_done);
   return plan;
