@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <utility>
 
+#include "art2part/common/angles.h"
 #include "art2part/common/number_text.h"
 #include "art2part/common/request_limits.h"
 
@@ -12,7 +13,6 @@ namespace art2part {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kMetre = 1e-3;  // per mm
 
 std::string fmt(double value) { return numberText(value, 10); }

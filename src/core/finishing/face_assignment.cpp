@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "art2part/common/angles.h"
 #include "art2part/common/number_text.h"
 #include "art2part/finishing/admissible.h"
 #include "art2part/visibility/cones.h"
@@ -12,7 +13,6 @@ namespace art2part {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kSameDirection = 0.01 * kPi / 180;  // a sampled direction this close is the face's own
 constexpr std::size_t kSurfaceChoices = 3;            // surface finishing is offered from this many setups at most
 
@@ -22,7 +22,6 @@ struct Offer {
   int index = -1;  // into visibility.directions
   Vec3 d = Vec3::UnitZ();
 };
-
 
 // The offers for a face's own direction `d`: every setup direction within the tilt (5-axis), the nearest first.
 std::vector<Offer> ownDirectionOffers(const SetupPlan& setups, const DirectionSet& directions, const Vec3& d,
@@ -39,7 +38,6 @@ std::vector<Offer> ownDirectionOffers(const SetupPlan& setups, const DirectionSe
   });
   return out;
 }
-
 
 double leastDot(const AdmissibleSet& surface, const Vec3& d) {
   double least = 1;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 
+#include "art2part/common/angles.h"
 #include "art2part/finishing/admissible.h"
 #include "art2part/finishing/face_assignment.h"
 
@@ -12,9 +13,7 @@ namespace art2part {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kSameDirection = 0.01 * kPi / 180;  // a sampled direction this close is the face's own
-
 
 // Whether a face's shape asks for a strategy its assignment does not give it from a direction that sees it whole.
 bool wantsItsOwnDirection(const Part& part, const FaceAssignment& a) {
@@ -26,7 +25,6 @@ bool wantsItsOwnDirection(const Part& part, const FaceAssignment& a) {
       return false;
   return true;
 }
-
 
 }  // namespace
 

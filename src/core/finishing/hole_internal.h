@@ -4,11 +4,11 @@
 #include <limits>
 #include <vector>
 
+#include "art2part/common/angles.h"
 #include "art2part/finishing/holes.h"
 
 namespace art2part::hole_detail {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kDegree = kPi / 180;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // A drill with this point angle (within the point tolerance) is a spot drill: it centres and chamfers, it makes no hole.

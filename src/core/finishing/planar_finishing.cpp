@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 
+#include "art2part/common/angles.h"
 #include "art2part/roughing/clearing_paths.h"
 #include "art2part/roughing/forbidden_region.h"
 #include "art2part/roughing/shadow.h"
@@ -22,7 +23,6 @@ using namespace finishing_detail;
 
 // A level's shadow is taken this far above it, so a floor lying at the level is not its own shadow (the tool's flat
 // bottom may touch it); a gouge of at most this much could go unnoticed by the planner (the simulation sees it).
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kAbove = 1e-3;
 constexpr double kTraceSpacing = 0.5;      // mm between the samples of a wall's trace
 // mm: a wall sample within the cutter's radius plus this of a pass is reached (the ring lies within the offsets' arc

@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "art2part/common/angles.h"
 #include "art2part/geometry/adjacency.h"
 #include "art2part/geometry/face.h"
 #include "art2part/geometry/mesh.h"
@@ -12,8 +13,6 @@
 
 namespace art2part {
 namespace segmentation {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // The options resolved for one mesh.
 struct Tolerances {

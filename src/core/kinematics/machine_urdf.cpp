@@ -5,13 +5,13 @@
 #include <cmath>
 #include <sstream>
 
+#include "art2part/common/angles.h"
 #include "art2part/common/number_text.h"
 
 namespace art2part {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kMetre = 1e-3;  // per mm
 
 // 12 significant digits; rounding noise of a zero (a sine of pi) printed as 0.

@@ -3,11 +3,10 @@
 
 #include <optional>
 
+#include "art2part/common/angles.h"
 #include "art2part/kinematics/machine.h"
 
 namespace art2part::kinematics_detail {
-
-constexpr double kPi = 3.14159265358979323846;
 
 Eigen::Matrix3d rotationX(double angle);
 Eigen::Matrix3d rotationY(double angle);

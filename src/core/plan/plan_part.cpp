@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 
+#include "art2part/common/angles.h"
 #include "art2part/plan/useless_operations.h"
 
 namespace art2part {
@@ -18,7 +19,6 @@ using Clock = std::chrono::steady_clock;
 
 constexpr double kFinishedLeftMm = 0.05;  // a face the simulation leaves within this of its surface is finished
 constexpr int kJudgedSamples = 3;         // ... when at least this many of its rays measure it
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kSameAxis = 1e-4;          // rad: operations whose axes differ by more are linked round the stock
 constexpr double kTransitionStepDeg = 10;   // the linking arc's steps: chords sag by 0.4 % of its radius
 constexpr double kTransitionMargin = 5;     // mm beyond the stock's sphere and clearance, at least (1 % of the size)

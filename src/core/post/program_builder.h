@@ -5,11 +5,11 @@
 #include <string>
 #include <vector>
 
+#include "art2part/common/angles.h"
 #include "art2part/post/machine_program.h"
 
 namespace art2part::post_detail {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kDegree = kPi / 180;
 
 // Consecutive toolpath points [begin, end).

@@ -9,11 +9,11 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "art2part/common/angles.h"
+
 namespace art2part {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 std::size_t wordsOf(const DirectionSet& set) { return (static_cast<std::size_t>(set.size()) + 63) / 64; }
 

@@ -10,12 +10,12 @@
 #include <utility>
 #include <vector>
 
+#include "art2part/common/angles.h"
 #include "art2part/roughing/clearing_paths.h"
 
 namespace art2part {
 namespace clearing_detail {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kMinRampRun = 0.5;            // mm: a path shorter than this is no ramp
 constexpr double kInset = 3.0 / kRegionScale;  // mm a point on a ring edge is moved into the region before rounding
 constexpr int kProbeDirections = 16;           // directions tried for a ramp where the pass itself is too short

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "art2part/common/angles.h"
 #include "art2part/roughing/engagement_clearing.h"
 #include "art2part/roughing/forbidden_region.h"
 #include "art2part/roughing/in_process_stock.h"
@@ -13,8 +14,6 @@
 namespace art2part {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Tuning of the levels and the regions; each value decides what the plans look like.
 constexpr double kStepdownOfDiameter = 0.5;   // a tool without max_stepdown steps down half its diameter

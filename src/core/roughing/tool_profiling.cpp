@@ -10,11 +10,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "art2part/common/angles.h"
+
 namespace art2part {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kMaxContacts = 64;
 constexpr double kMaxStep = 10 * kPi / 180;
 

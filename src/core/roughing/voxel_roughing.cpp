@@ -6,6 +6,7 @@
 #include <cmath>
 #include <optional>
 
+#include "art2part/common/angles.h"
 #include "art2part/geometry/adjacency.h"
 #include "art2part/roughing/cone_thinning.h"
 #include "art2part/roughing/forbidden_region.h"
@@ -18,7 +19,6 @@ namespace art2part {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kLayerOfDiameter = 0.8;    // slabs merged or cut to about this many tool diameters (buildSlabs)
 constexpr double kMaterialSliverMm2 = 1.0;  // material of a slab in pieces smaller than this is left to finishing
 constexpr double kSteepestTiltDeg = 85.0;   // the reach of a leaning body is measured at no more tilt than this

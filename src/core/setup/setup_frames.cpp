@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "art2part/common/angles.h"
 #include "art2part/setup/setup_plan.h"
 #include "art2part/sphere/special_directions.h"
 
 namespace art2part {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kPerpendicularDeg = 2.0;  // a feature counts when it is within this of perpendicular to z
 constexpr double kGroupDeg = 2.0;          // features this close (up to sign) are one direction
 

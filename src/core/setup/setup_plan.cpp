@@ -8,13 +8,13 @@
 #include <functional>
 #include <string>
 
+#include "art2part/common/angles.h"
+
 #include "setup_internal.h"
 
 namespace art2part {
 namespace setup_detail {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 double radians(double degrees) { return degrees * kPi / 180.0; }
 

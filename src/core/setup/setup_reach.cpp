@@ -8,12 +8,12 @@
 #include <thread>
 #include <unordered_map>
 
+#include "art2part/common/angles.h"
+
 #include "setup_internal.h"
 
 namespace art2part {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Hash and equality of BitMatrix rows by row index, so identical cones meet in one map entry.
 struct RowHash {

@@ -7,6 +7,8 @@
 #include <random>
 #include <thread>
 
+#include "art2part/common/angles.h"
+
 #include "feed_moves.h"
 
 namespace art2part {
@@ -15,7 +17,6 @@ using namespace simulation_detail;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kMoveBlock = 64;  // consecutive moves under one box: a path is coherent, so whole blocks are skipped
 
 struct Block {

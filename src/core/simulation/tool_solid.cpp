@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "art2part/common/angles.h"
+
 namespace art2part {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 ToolPiece frustum(ToolZone zone, double h0, double h1, double r0, double r1) {
   ToolPiece p;

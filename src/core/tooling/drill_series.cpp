@@ -25,6 +25,7 @@
 #include <numeric>
 #include <set>
 
+#include "art2part/common/angles.h"
 #include "art2part/geometry/mesh.h"
 #include "library_yaml.h"
 
@@ -32,7 +33,6 @@ namespace art2part::tooling_detail {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kMmPerInch = 25.4;
 // A size belongs to a length row when it is at most the row's diameter plus this (sizes are given to 0.001 mm).
 constexpr double kSizeSlack = 1e-6;

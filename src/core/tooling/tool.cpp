@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "art2part/common/angles.h"
 #include "art2part/geometry/mesh.h"
 
 namespace art2part {
@@ -26,8 +27,6 @@ const char* toolTypeName(ToolType type) {
 }
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Height of the tip's profile: above it the flutes have the full cutting radius.
 double tipHeight(const Tool& tool) {
