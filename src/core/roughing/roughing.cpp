@@ -316,6 +316,7 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
     in_process_cuts = in_process->cutSlabs(setup.frame, extents);
   }
   const double beyond = before ? kRestCentreBeyondStockMm : kCentreBeyondStockMm;  // centres beyond the target
+  const Region no_skin;
   double top = g.stock_top;
   const std::string what = op.kind + ", " + tool.id + ", level ";
   for (RoughingLevel& level : levels) {
@@ -338,10 +339,10 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
     // its doubt of both the skin and a face they cut: the stairs and film they left round the part, which a pass
     // would trace at every level for next to nothing), or for a rest pass what of it lies beyond the allowance.
     // Shanks, holders and links keep clear of all of `stock`.
-    const Region& skin = part_with_allowance.at(z, {});
     const Region proven = in_process ? intersect(stock, in_process_proven[index]) : stock;
+    const Region& skin = in_process || before ? part_with_allowance.at(z, {}) : no_skin;  // a first main pass: unused
     Region doubtful;
-    if (in_process) {
+    if (in_process && !regionEmpty(in_process_cuts[index])) {
       doubtful = intersect(proven, intersect(offsetRegion(skin, in_process->doubt()), in_process_cuts[index]));
       if (before) doubtful = subtract(doubtful, skin);
     }
