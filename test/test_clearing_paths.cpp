@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -460,6 +461,32 @@ TEST(ClearingPaths, ContoursSkipRingEdgesInAirAndStillSweepAllTheStock) {
   EXPECT_LT(clearingLength(moves, true), clearingLength(all, true) - 0.9 * outer_ring);
   EXPECT_EQ(stats.plunges_into_stock, 0);
   EXPECT_EQ(stats.contours, 1);  // the ring round the part only
+}
+
+// A contour stretch open at both ends (the rest of its ring in air) is entered at the end nearer the tool: a level
+// cut below one that ended at its far end starts where the tool is, instead of going back along the stretch to its
+// first point (featuretype's reach pass in its second setup traversed 150-250 mm back at each of its levels).
+TEST(ClearingPaths, AnOpenContourStretchStartsAtTheEndNearerTheTool) {
+  // A U-shaped band 5 mm wide, open at the top; stock only along its inner side, so its outer edges lie in air.
+  const Region inner = region({rectangle(5, 5, 55, 40)});
+  const Region centre = subtract(region({rectangle(0, 0, 60, 40)}), inner);
+  ClearingLevel level = levelOf(centre, subtract(centre, offsetRegion(inner, 2)));
+  level.cleared.push_back({level.top, offsetRegion(centre, 1)});
+  ClearingOptions options = optionsOf(8);
+  options.stay_down = true;
+  for (const Point2& end : {Point2(0, 40), Point2(60, 40)}) {
+    SCOPED_TRACE(end.x());
+    level.from = Eigen::Vector3d(end.x(), end.y(), level.top);
+    ClearingStats stats;
+    const std::vector<ClearingPoint> moves = clearChecked(level, options, stats);
+    EXPECT_EQ(stats.contours, 1);
+    EXPECT_EQ(stats.passes, 0);  // the band is narrower than the step-over: the contour alone sweeps it
+    const auto first_cut = std::find_if(moves.begin(), moves.end(),
+                                        [](const ClearingPoint& m) { return m.move != ClearingMove::Rapid; });
+    ASSERT_NE(first_cut, moves.end());
+    EXPECT_LE((xy(*first_cut) - end).norm(), 1.0);
+    EXPECT_LE(clearingLength(moves, false), 2.0);  // straight down to the level: no way back along the band
+  }
 }
 
 TEST(ClearingPaths, RandomRegionsAreSound) {

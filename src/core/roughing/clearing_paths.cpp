@@ -338,7 +338,7 @@ std::pair<std::size_t, double> nearestVertex(const Polyline& ring, const Point2&
 }
 
 // A stretch of a ring the contour pass follows: the whole ring (closed), or a run of its edges (open, in the ring's
-// direction).
+// direction; cut from whichever end is nearer the tool).
 struct RingStretch {
   Polyline path;
   bool closed = true;
@@ -379,9 +379,14 @@ std::vector<RingStretch> ringStretches(const Polyline& ring, const Region& air, 
   return stretches;
 }
 
-// Where a stretch starts nearest `from`: a closed ring at its nearest vertex, an open one at its first point.
+// Where a stretch starts nearest `from`: a closed ring at its nearest vertex, an open one at the nearer of its ends
+// (both lie in air, where the tool may plunge; the zig-zag cuts both ways too, so neither way is the rule).
 std::pair<std::size_t, double> nearestStart(const RingStretch& stretch, const Point2& from) {
-  if (!stretch.closed) return {0, (stretch.path.front() - from).squaredNorm()};
+  if (!stretch.closed) {
+    const double front = (stretch.path.front() - from).squaredNorm(), back = (stretch.path.back() - from).squaredNorm();
+    return back < front ? std::pair<std::size_t, double>{stretch.path.size() - 1, back}
+                        : std::pair<std::size_t, double>{0, front};
+  }
   return nearestVertex(stretch.path, from);
 }
 
@@ -408,6 +413,7 @@ void cutContours(const std::vector<RegionPiece>& pieces, const ClearingLevel& le
     stretches.erase(stretches.begin() + next);
     Polyline& path = stretch.path;
     if (!stretch.closed) {
+      if (start != 0) std::reverse(path.begin(), path.end());
       if (!writer.linkTo(path.front(), true, writer.entrySeconds(path.front()))) writer.enterPass(path);
       for (const Point2& p : path) writer.feed(p);
       ++stats.contours;
