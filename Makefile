@@ -43,11 +43,13 @@ demo: build
 	  "plan.txt plan.json setups.png toolpaths.csv tools.json program.ngc (setup_<k>.ngc, tool.tbl, trajectory.csv)" \
 	  "remaining.png, setup_<k>.png, setup_sheet.html, rviz_cell.png (the cell in rviz: part, setup frames, machine)"
 
-# All tests: gtest per stage and rostest integration, through ctest (catkin_make run_tests exits 0 on failures).
+# All tests: gtest per stage and rostest integration, through ctest (catkin_make run_tests exits 0 on failures),
+# JOBS at a time: each rostest starts its own master on a free port; the tests that start LinuxCNC or launch the
+# whole cell run alone (RUN_SERIAL in CMakeLists.txt).
 test: build
 	@cd $(WS) && $(CATKIN) -j$(JOBS) tests > $(WS)/build-tests.log 2>&1 \
 	  || { tail -n 60 $(WS)/build-tests.log; echo "make: building the tests failed"; exit 1; }
-	@cd $(BUILD) && ctest --output-on-failure --timeout 600
+	@cd $(BUILD) && ctest -j$(JOBS) --output-on-failure --timeout 600
 
 bench: build
 	@for b in $(BIN)/bench_*; do echo "== $$(basename $$b)"; $$b; done

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <random>
 #include <set>
 
@@ -692,6 +693,19 @@ TEST(LinkClearance, HeightsAreClearByProbingAndNotNeedlesslyHigh) {
   EXPECT_GE(lowest_proven, 3);
 }
 
+// The pieces in the order PieceSchedule hands them out, the tool ending each piece at the first vertex of its outer
+// ring.
+std::vector<LevelPiece> scheduledOrder(const std::vector<ClearingLevel>& levels, double reach) {
+  PieceSchedule schedule(levels, reach);
+  std::vector<LevelPiece> order;
+  std::optional<Point2> at;
+  for (std::size_t k = schedule.next(at); k < schedule.pieces().size(); k = schedule.next(at)) {
+    order.push_back(schedule.pieces()[k]);
+    at = regionRings(order.back().rings).front().front();
+  }
+  return order;
+}
+
 // Operations cut piece after piece (operation_moves.h): that order is sound only if every piece comes after each
 // piece above it within the reach. Checked on random levels of boxes against Clipper: every piece of every level is
 // cut once, and a piece whose region grown by the reach meets a piece below it comes first.
@@ -711,7 +725,7 @@ TEST(PieceOrder, APieceComesAfterEveryPieceAboveItWithinTheReach) {
       level.centre = region(boxes);
     }
     const double reach = 20;
-    const std::vector<LevelPiece> order = pieceOrder(levels, reach);
+    const std::vector<LevelPiece> order = scheduledOrder(levels, reach);
     for (std::size_t i = 0; i < levels.size(); ++i) {
       double area = 0;
       for (const LevelPiece& piece : order)
@@ -735,7 +749,7 @@ TEST(PieceOrder, APocketIsFinishedBeforeTheToolCrossesToTheNext) {
   levels[0].centre = region({rectangle(0, 0, 300, 60)});
   for (std::size_t i = 1; i < levels.size(); ++i)
     levels[i].centre = region({rectangle(10, 10, 50, 50), rectangle(250, 10, 290, 50)});
-  const std::vector<LevelPiece> order = pieceOrder(levels, 20);
+  const std::vector<LevelPiece> order = scheduledOrder(levels, 20);
   ASSERT_EQ(order.size(), 9u);
   int crossings = 0;
   for (std::size_t k = 2; k < order.size(); ++k) {
@@ -744,4 +758,25 @@ TEST(PieceOrder, APocketIsFinishedBeforeTheToolCrossesToTheNext) {
   }
   EXPECT_EQ(crossings, 1);
   for (std::size_t k = 1; k < 5; ++k) EXPECT_EQ(order[k].level, k);  // down the first pocket
+}
+
+// The next piece is the one nearest where the tool ended, not the one nearest the last piece's box: under a long top
+// level that ends at its right end, the tool goes down the right pocket first (by boxes both pockets lay as near).
+TEST(PieceOrder, TheNextPieceIsTheOneNearestTheTool) {
+  std::vector<ClearingLevel> levels(2);
+  levels[0].centre = region({rectangle(0, 0, 300, 60)});
+  levels[1].centre = region({rectangle(10, 10, 50, 50), rectangle(250, 10, 290, 50)});
+  for (const double end : {295.0, 5.0}) {
+    SCOPED_TRACE(end);
+    PieceSchedule schedule(levels, 20);
+    const std::size_t top = schedule.next(std::nullopt);
+    ASSERT_LT(top, schedule.pieces().size());
+    EXPECT_EQ(schedule.pieces()[top].level, 0u);
+    const std::size_t pocket = schedule.next(Point2(end, 30));
+    ASSERT_LT(pocket, schedule.pieces().size());
+    EXPECT_TRUE(regionContains(schedule.pieces()[pocket].rings, {end < 150 ? 30.0 : 270.0, 30}));
+    const std::size_t other = schedule.next(Point2(end, 30));
+    ASSERT_LT(other, schedule.pieces().size());
+    EXPECT_EQ(schedule.next(Point2(end, 30)), schedule.pieces().size());
+  }
 }

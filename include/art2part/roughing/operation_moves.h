@@ -1,5 +1,5 @@
 // The moves of one roughing operation from the regions of its levels (clearing_paths.h), in its setup's frame.
-// With stay-down links, piece by piece (pieceOrder): the connected pieces of every level's centre region in an order
+// With stay-down links, piece by piece (PieceSchedule): the connected pieces of every level's centre region in an order
 // that finishes the pocket the tool is in before it crosses to the next, each linked to the last without leaving the
 // material proven clear (the pieces cut, ClearedLevel, and the stock the slabs hold, LinkClearance). Level after
 // level would cross the part between pockets at every level. Without stay-down links, level after level.
@@ -10,6 +10,7 @@
 // slabs as they stand: their final stock plus the pieces still to come grown by the cutter's radius.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "art2part/roughing/clearing_paths.h"
@@ -43,9 +44,29 @@ struct LevelPiece {
   Region rings;           // the outer ring first, then its holes
 };
 
-// Every level's pieces in an order to cut them: a piece comes after each piece of a level above whose box lies within
-// `reach` of its box; among the pieces so ready, first the first piece of the top level, then the one whose box is
-// nearest the last one's (at a tie, the deepest: down the pocket the tool is in).
-std::vector<LevelPiece> pieceOrder(const std::vector<ClearingLevel>& levels, double reach);
+// Every level's pieces, handed out one at a time in an order to cut them, each chosen from where the tool is after
+// the one before (the last piece's box said little: a long piece ends at one end, and every piece below it lay as
+// near). A piece is ready once every piece of a level above whose box lies within `reach` of its box is cut; among
+// the ready pieces, first the first piece of the top level, then the one nearest the tool (0 inside it; at a tie,
+// the deepest: down the pocket the tool is in).
+class PieceSchedule {
+ public:
+  PieceSchedule(const std::vector<ClearingLevel>& levels, double reach);
+  const std::vector<LevelPiece>& pieces() const { return pieces_; }
+  // The index into pieces() of the next piece, now taken as cut, with the tool at `at` (none: the first piece);
+  // pieces().size() once every piece is taken.
+  std::size_t next(const std::optional<Point2>& at);
+
+ private:
+  struct Box {
+    Point2 lo, hi;
+  };
+  static Box boxOf(const Region& rings);
+  std::vector<LevelPiece> pieces_;
+  std::vector<Box> boxes_;
+  std::vector<std::size_t> waiting_;               // per piece: pieces above within reach not cut yet
+  std::vector<std::vector<std::size_t>> unblocks_;  // per piece: pieces below within reach
+  std::vector<bool> taken_;
+};
 
 }  // namespace art2part

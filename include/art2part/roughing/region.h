@@ -64,6 +64,8 @@ class RegionFailureTally {
 bool regionEmpty(const Region& region);
 // Inside or on the boundary.
 bool regionContains(const Region& region, const Point2& p);
+// mm from `p` to the region: 0 inside or on it, else to its nearest ring edge (infinity for an empty region).
+double regionDistance(const Region& region, const Point2& p);
 // The rings whose bounding boxes meet the box [lo, hi] (mm): the same set as the region within that box (a hole's
 // box lies within its outer ring's), usually far fewer edges for a boolean operation with something small.
 Region ringsMeeting(const Region& region, const Point2& lo, const Point2& hi);

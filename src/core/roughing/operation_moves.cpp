@@ -15,21 +15,6 @@ namespace {
 // hops; farther up, the clearance plane costs little more.
 constexpr std::size_t kLinkLevels = 3;
 
-struct Box2 {
-  Point2 lo = Point2::Constant(std::numeric_limits<double>::infinity());
-  Point2 hi = Point2::Constant(-std::numeric_limits<double>::infinity());
-  bool meets(const Box2& other, double gap) const {
-    return !((lo.array() > other.hi.array() + gap).any() || (other.lo.array() > hi.array() + gap).any());
-  }
-};
-
-Box2 boxOf(const Region& rings) {
-  Box2 box;
-  for (const Ring& ring : regionRings(rings))
-    for (const Point2& p : ring) box.lo = box.lo.cwiseMin(p), box.hi = box.hi.cwiseMax(p);
-  return box;
-}
-
 // Writes levels one after the other, linking each to where the last one left the tool.
 class MoveWriter {
  public:
@@ -106,18 +91,19 @@ double bodyReach(const Tool& tool, const OperationLevels& levels) {
   return reach;
 }
 
-// Piece after piece in pieceOrder; links over the pieces cut (ClearedLevel) and over the slabs as they stand: each
-// slab's final stock plus what its pieces still to come will take there (their centres grown by the cutter's
-// radius).
+// Piece after piece as PieceSchedule hands them out; links over the pieces cut (ClearedLevel) and over the slabs as
+// they stand: each slab's final stock plus what its pieces still to come will take there (their centres grown by the
+// cutter's radius).
 void pieceByPiece(const OperationLevels& levels, const Tool& tool, const OperationMovesOptions& options,
                   MoveWriter& writer) {
   const double r = tool.diameter / 2, reach = r - reachShortfall(options);
-  const std::vector<LevelPiece> order = pieceOrder(levels.levels, bodyReach(tool, levels) + options.holder_margin + r);
-  std::vector<Region> sweeps;  // per piece in order: what it takes, at most
+  PieceSchedule schedule(levels.levels, bodyReach(tool, levels) + options.holder_margin + r);
+  const std::vector<LevelPiece>& pieces = schedule.pieces();
+  std::vector<Region> sweeps;  // per piece: what it takes, at most
   std::vector<std::vector<std::size_t>> pending(levels.levels.size());  // per level: its pieces not cut yet
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    sweeps.push_back(offsetRegion(order[k].rings, reach));
-    pending[order[k].level].push_back(k);
+  for (std::size_t k = 0; k < pieces.size(); ++k) {
+    sweeps.push_back(offsetRegion(pieces[k].rings, reach));
+    pending[pieces[k].level].push_back(k);
   }
   // The slab's stock while pieces of it are still to come: its final stock, less what the level sweeps (the proofs
   // keep no band: link_clearance.h), plus those pieces' sweeps.
@@ -135,8 +121,12 @@ void pieceByPiece(const OperationLevels& levels, const Tool& tool, const Operati
   LinkClearance link_clearance(tool, options.holder_margin);
   for (std::size_t i = 0; i < slabs; ++i) link_clearance.addSlab(slabNow(i), {});
   std::vector<ClearedLevel> cleared;
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    const LevelPiece& piece = order[k];
+  auto toolAt = [&writer]() -> std::optional<Point2> {
+    if (!writer.at()) return std::nullopt;
+    return Point2(writer.at()->x(), writer.at()->y());
+  };
+  for (std::size_t k = schedule.next(toolAt()); k < pieces.size(); k = schedule.next(toolAt())) {
+    const LevelPiece& piece = pieces[k];
     // The level as planned (its flags, step-over, engagement, stock_reach: its other pieces' stock too, material to
     // go round), narrowed to this piece.
     ClearingLevel clear = levels.levels[piece.level];
@@ -154,56 +144,54 @@ void pieceByPiece(const OperationLevels& levels, const Tool& tool, const Operati
   }
 }
 
-// The gap between two boxes (0 where they meet).
-double boxGap(const Box2& a, const Box2& b) {
-  const Point2 gap = (a.lo - b.hi).cwiseMax(b.lo - a.hi).cwiseMax(Point2::Zero());
-  return gap.norm();
-}
-
 }  // namespace
 
-std::vector<LevelPiece> pieceOrder(const std::vector<ClearingLevel>& levels, double reach) {
-  struct Piece {
-    LevelPiece piece;
-    Box2 box;
-    std::size_t waiting = 0;             // pieces above within reach not cut yet
-    std::vector<std::size_t> unblocks;   // pieces below within reach
-  };
-  std::vector<Piece> pieces;
+PieceSchedule::Box PieceSchedule::boxOf(const Region& rings) {
+  Box box{Point2::Constant(std::numeric_limits<double>::infinity()),
+          Point2::Constant(-std::numeric_limits<double>::infinity())};
+  for (const Ring& ring : regionRings(rings))
+    for (const Point2& p : ring) box.lo = box.lo.cwiseMin(p), box.hi = box.hi.cwiseMax(p);
+  return box;
+}
+
+PieceSchedule::PieceSchedule(const std::vector<ClearingLevel>& levels, double reach) {
   for (std::size_t i = 0; i < levels.size(); ++i)
     for (RegionPiece& piece : regionPieces(levels[i].centre)) {
-      const Box2 box = boxOf(piece.rings);
-      pieces.push_back({{i, std::move(piece.rings)}, box, 0, {}});
+      boxes_.push_back(boxOf(piece.rings));
+      pieces_.push_back({i, std::move(piece.rings)});
     }
-  for (std::size_t a = 0; a < pieces.size(); ++a)
-    for (std::size_t b = a + 1; b < pieces.size(); ++b)
-      if (pieces[a].piece.level < pieces[b].piece.level && pieces[a].box.meets(pieces[b].box, reach)) {
-        pieces[a].unblocks.push_back(b);
-        ++pieces[b].waiting;
+  waiting_.assign(pieces_.size(), 0);
+  unblocks_.resize(pieces_.size());
+  taken_.assign(pieces_.size(), false);
+  for (std::size_t a = 0; a < pieces_.size(); ++a)
+    for (std::size_t b = a + 1; b < pieces_.size(); ++b)
+      if (pieces_[a].level < pieces_[b].level && !((boxes_[a].lo.array() > boxes_[b].hi.array() + reach).any() ||
+                                                   (boxes_[b].lo.array() > boxes_[a].hi.array() + reach).any())) {
+        unblocks_[a].push_back(b);
+        ++waiting_[b];
       }
-  std::vector<LevelPiece> order;
-  std::vector<bool> done(pieces.size(), false);
-  const Box2* last = nullptr;
-  for (std::size_t n = 0; n < pieces.size(); ++n) {
-    std::size_t next = pieces.size();
-    double nearest = std::numeric_limits<double>::infinity();
-    for (std::size_t p = 0; p < pieces.size(); ++p) {
-      if (done[p] || pieces[p].waiting > 0) continue;
-      if (!last) {  // the first: the first piece of the top level
-        next = p;
-        break;
-      }
-      const double gap = boxGap(*last, pieces[p].box);
-      // Nearest first; at a tie, the deeper piece (down the pocket the tool is in).
-      if (gap < nearest || (gap == nearest && pieces[p].piece.level > pieces[next].piece.level))
-        next = p, nearest = gap;
+}
+
+std::size_t PieceSchedule::next(const std::optional<Point2>& at) {
+  std::size_t best = pieces_.size();
+  double nearest = std::numeric_limits<double>::infinity();
+  for (std::size_t p = 0; p < pieces_.size(); ++p) {
+    if (taken_[p] || waiting_[p] > 0) continue;
+    if (!at) {  // the first: the first piece of the top level
+      best = p;
+      break;
     }
-    done[next] = true;
-    for (std::size_t b : pieces[next].unblocks) --pieces[b].waiting;
-    last = &pieces[next].box;
-    order.push_back(pieces[next].piece);
+    // The box's distance bounds the piece's from below: most pieces are passed over on it.
+    const Point2 outside = (boxes_[p].lo - *at).cwiseMax(*at - boxes_[p].hi).cwiseMax(Point2::Zero());
+    if (outside.norm() > nearest) continue;
+    const double d = regionDistance(pieces_[p].rings, *at);
+    // Nearest first; at a tie, the deeper piece (down the pocket the tool is in).
+    if (d < nearest || (d == nearest && pieces_[p].level > pieces_[best].level)) best = p, nearest = d;
   }
-  return order;
+  if (best == pieces_.size()) return best;
+  taken_[best] = true;
+  for (std::size_t b : unblocks_[best]) --waiting_[b];
+  return best;
 }
 
 std::vector<ClearingPoint> operationMoves(const OperationLevels& levels, const Tool& tool,

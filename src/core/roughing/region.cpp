@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 namespace art2part {
@@ -329,6 +330,19 @@ bool regionContains(const Region& region, const Point2& p) {
     if (in == 1) winding += ClipperLib::Orientation(path) ? 1 : -1;
   }
   return winding > 0;
+}
+
+double regionDistance(const Region& region, const Point2& p) {
+  if (regionContains(region, p)) return 0;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const Path& path : region)
+    for (std::size_t i = 0; i < path.size(); ++i) {
+      const Point2 a = fromRegionPoint(path[i]), b = fromRegionPoint(path[(i + 1) % path.size()]);
+      const Point2 ab = b - a;
+      const double t = ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+      nearest = std::min(nearest, (a + t * ab - p).squaredNorm());
+    }
+  return std::sqrt(nearest);
 }
 
 Region ringsMeeting(const Region& region, const Point2& lo, const Point2& hi) {
