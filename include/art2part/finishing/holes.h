@@ -178,6 +178,12 @@ Toolpath drillingPath(const std::vector<Hole>& holes, const Tool& tool, bool spo
 // + breakthrough, within free_beyond less holder_margin), a full circle there, back to the centre, up. Chords inside
 // the circle by at most helix_chord. Throws InputError for a tool that is not a flat end mill narrower than the bore.
 Toolpath helixPath(const Hole& hole, const Tool& tool, int setup, double clearance_above, const HoleOptions& options = {});
+// Helical milling of `holes` (one axis) one after the other, every one from and back to drillingPath's one clearance
+// level over them all: the rapids between holes run level at it. (Each hole at its own level, `clearance_above` over
+// its own mouth, left slanted rapids from a high mouth's level down to a low one's, through whatever stood between:
+// ANC101 in 5-axis mode, a 25.7 mm gouge.) Throws as drillingPath and helixPath do.
+Toolpath helixPaths(const std::vector<Hole>& holes, const Tool& tool, int setup, double clearance_above,
+                    const HoleOptions& options = {});
 
 // Depths below the mouth that the tools' tips reach (what drillingPath and helixPath cut to, and chooseHoleMethod
 // checks). A drill: a cone bottom's apex or, when shallower, the depth that puts the drill's shoulder at the bore's end

@@ -7,11 +7,14 @@
 #include <limits>
 #include <map>
 #include <sstream>
+#include <tuple>
 
+#include "art2part/common/angles.h"
 #include "art2part/common/number_text.h"
 #include "art2part/finishing/admissible.h"
 #include "art2part/finishing/face_assignment.h"
 #include "art2part/finishing/planar_finishing.h"
+#include "art2part/finishing/stock_after_roughing.h"
 #include "art2part/geometry/solid_closure.h"
 
 namespace art2part {
@@ -117,6 +120,7 @@ struct Context {
   const std::vector<const Tool*>& flats;
   const std::vector<const Tool*>& balls;
   const std::vector<std::vector<int>>& triangles;
+  StockAfterRoughing& after_roughing;  // the stock along directions that are no setup's own
 };
 
 std::string number(double v) { return numberText(v, 3); }
@@ -148,14 +152,15 @@ int toolClass(const Tool* tool) {
 }
 
 
+bool setupsOwnDirection(const Setup& setup, const Vec3& d) { return d.dot(setup.frame.z) > std::cos(1e-6); }
+
 // What roughing left in the group's frame: the setup's slabs when the group's direction is the setup's own, else
-// nothing known (another direction's frame has no slabs).
+// the in-process model's along it (a 5-axis plan's tilted directions).
 std::vector<SlabState> stockLeftAlong(const Context& c, const Group& group) {
   const Setup& setup = c.in.setups.setups[group.setup];
-  if (group.direction.dot(setup.frame.z) > std::cos(1e-6) &&
-      group.setup < static_cast<int>(c.in.roughing.stock_left.size()))
+  if (setupsOwnDirection(setup, group.direction) && group.setup < static_cast<int>(c.in.roughing.stock_left.size()))
     return c.in.roughing.stock_left[group.setup];
-  return {};
+  return c.after_roughing.slabs(group.setup, frameFor(c.in.part, setup, group.direction));
 }
 
 void runPlanarGroup(const Context& c, const Group& group, const std::vector<int>& tried, Tally& tally,
@@ -231,9 +236,19 @@ void makeHoles(const Context& c, const std::vector<FaceAssignment>& assignment, 
   const Part& part = c.in.part;
   std::vector<Hole>& holes = plan.holes;
   std::vector<HoleMachining>& methods = plan.hole_methods;
-  std::map<std::pair<int, std::string>, std::vector<int>> drilled;  // (setup, drill id) -> holes
-  std::map<int, std::vector<int>> spotted;                          // setup -> holes
+  // Runs: (setup, axis, drill id) -> holes, and (setup, axis) -> holes to spot; an axis by its index in `axes` (a 5-axis
+  // setup makes holes along several).
+  std::map<std::tuple<int, int, std::string>, std::vector<int>> drilled;
+  std::map<std::pair<int, int>, std::vector<int>> spotted;
+  std::vector<Vec3> axes;
+  auto axisIndex = [&](const Vec3& axis) {
+    for (std::size_t i = 0; i < axes.size(); ++i)
+      if (axes[i].dot(axis) > std::cos(c.options.holes.axis_tolerance_deg * kPi / 180)) return static_cast<int>(i);
+    axes.push_back(axis);
+    return static_cast<int>(axes.size()) - 1;
+  };
   std::vector<char> turned(holes.size(), 0);
+  std::vector<signed char> clear_over(holes.size(), -1);  // per hole, once known: 1 nothing over its mouth, 0 stock
   for (const FaceAssignment& a : assignment) {
     if (a.choices.empty() || a.choices.front().hole < 0) continue;
     const FinishingChoice& choice = a.choices.front();
@@ -245,10 +260,25 @@ void makeHoles(const Context& c, const std::vector<FaceAssignment>& assignment, 
     }
     const HoleMachining& m = methods[h];
     if (m.method == HoleMethod::None) continue;
-    auto& list = drilled[{choice.setup, m.method == HoleMethod::Drill ? m.drill : "helix:" + m.drill}];
+    // Along a tilted direction roughing may have left stock over the mouth (its own setup direction cleared above it).
+    auto blocked = [&](const std::string& id) {
+      const Tool* tool = id.empty() ? nullptr : c.in.library.find(id);
+      return tool && !c.after_roughing.clearOverHole(choice.setup, holes[h], *tool, c.options.tools.holder_margin);
+    };
+    if (clear_over[h] < 0)
+      clear_over[h] = setupsOwnDirection(c.in.setups.setups[choice.setup], choice.direction) ||
+                      !(blocked(m.drill) || (m.method == HoleMethod::Drill && blocked(m.spot)));
+    if (!clear_over[h]) {
+      for (int f : holes[h].bore_faces)
+        tally.note(f, 0, 0.0, "roughing left stock over its mouth along its axis in setup " +
+                                  std::to_string(choice.setup));
+      continue;
+    }
+    const int axis = axisIndex(holes[h].axis);
+    auto& list = drilled[{choice.setup, axis, m.method == HoleMethod::Drill ? m.drill : "helix:" + m.drill}];
     if (std::find(list.begin(), list.end(), h) == list.end()) list.push_back(h);
     if (m.method == HoleMethod::Drill && !m.spot.empty()) {
-      auto& spots = spotted[choice.setup];
+      auto& spots = spotted[{choice.setup, axis}];
       if (std::find(spots.begin(), spots.end(), h) == spots.end()) spots.push_back(h);
     }
   }
@@ -273,13 +303,14 @@ void makeHoles(const Context& c, const std::vector<FaceAssignment>& assignment, 
     if (spot) op.note = "spot drilling";
     return op;
   };
-  for (const auto& [setup, group] : spotted)
+  for (const auto& [key, group] : spotted)
     if (const Tool* spot = c.in.library.find(methods[group.front()].spot)) {
+      const int setup = key.first;
       FinishingOperation op = drillRun(setup, group, *spot, true);
       if (!op.path.empty()) per_setup[setup].push_back(std::move(op));
     }
   for (const auto& [key, group] : drilled) {
-    const auto& [setup, id] = key;
+    const auto& [setup, axis, id] = key;
     const bool helix = id.rfind("helix:", 0) == 0;
     const Tool* tool = c.in.library.find(helix ? id.substr(6) : id);
     if (!tool) continue;
@@ -289,11 +320,12 @@ void makeHoles(const Context& c, const std::vector<FaceAssignment>& assignment, 
       op.kind = FinishingKind::Helix;
       op.tool = tool->id;
       op.direction = holes[group.front()].axis;
+      std::vector<Hole> list;
       for (int h : group) {
         op.faces.insert(op.faces.end(), holes[h].bore_faces.begin(), holes[h].bore_faces.end());
-        const Toolpath p = helixPath(holes[h], *tool, setup, clearanceAbove(group), c.options.holes);
-        op.path.insert(op.path.end(), p.begin(), p.end());
+        list.push_back(holes[h]);
       }
+      op.path = helixPaths(list, *tool, setup, clearanceAbove(group), c.options.holes);
     } else {
       op = drillRun(setup, group, *tool, false);
     }
@@ -400,7 +432,8 @@ FinishingPlan planFinishing(const FinishingInput& in, const FinishingOptions& op
       assignFaces(part, in.visibility, in.setups, in.holes, in.hole_methods, longest_flutes, options);
   const std::vector<std::vector<int>> triangles = faceTriangles(part);
   const Mesh stock = roughingStock(part, RoughingOptions{});
-  const Context c{in, options, solid, stock, flats, balls, triangles};
+  StockAfterRoughing after_roughing(solid, stock, in.roughing, in.library);
+  const Context c{in, options, solid, stock, flats, balls, triangles, after_roughing};
   const std::size_t faces = part.faces.size();
   Tally tally{std::vector<double>(faces, 0), std::vector<int>(faces, -1), std::vector<std::string>(faces)};
   std::vector<std::vector<FinishingOperation>> per_setup(in.setups.setups.size());

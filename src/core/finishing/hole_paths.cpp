@@ -70,6 +70,17 @@ double clearanceLevel(const std::vector<Hole>& holes, const Vec3& axis, double c
   return std::max(top + std::max(clearance_above, options.retract_height), material + options.holder_margin);
 }
 
+// The one axis of a run of holes; throws InputError when one differs from the first's.
+Vec3 runAxis(const std::vector<Hole>& holes, const std::string& what, const HoleOptions& options) {
+  const Vec3 axis = holes.front().axis.normalized();
+  for (size_t h = 1; h < holes.size(); ++h)
+    if (axis.cross(holes[h].axis.normalized()).norm() > std::sin(options.axis_tolerance_deg * kDegree) ||
+        axis.dot(holes[h].axis) < 0)
+      throw InputError(what + ": hole " + std::to_string(h) + " has another axis than hole 0 (one setup "
+                       "direction per drilling run)");
+  return axis;
+}
+
 }  // namespace
 
 Mesh holePlugs(const std::vector<Hole>& holes, const std::vector<HoleMachining>& methods) {
@@ -94,12 +105,7 @@ Toolpath drillingPath(const std::vector<Hole>& holes, const Tool& tool, bool spo
   if (tool.type != ToolType::Drill) throw InputError("drillingPath: tool '" + tool.id + "' is not a drill");
   Toolpath path;
   if (holes.empty()) return path;
-  const Vec3 axis = holes.front().axis.normalized();
-  for (size_t h = 1; h < holes.size(); ++h)
-    if (axis.cross(holes[h].axis.normalized()).norm() > std::sin(options.axis_tolerance_deg * kDegree) ||
-        axis.dot(holes[h].axis) < 0)
-      throw InputError("drillingPath: hole " + std::to_string(h) + " has another axis than hole 0 (one setup "
-                       "direction per drilling run)");
+  const Vec3 axis = runAxis(holes, "drillingPath", options);
   const double level = clearanceLevel(holes, axis, clearance_above, options);
   for (const Hole& hole : holes) {
     const double depth = spot ? spotDepth(hole, tool, options) : drillDepth(hole, tool, options);
@@ -146,6 +152,21 @@ Toolpath helixPath(const Hole& hole, const Tool& tool, int setup, double clearan
   push(path, cutterLocation(setup, tool.id, MoveKind::Feed, hole.mouth - depth * axis, axis));
   push(path, cutterLocation(setup, tool.id, MoveKind::Rapid, r_plane, axis));
   push(path, cutterLocation(setup, tool.id, MoveKind::Rapid, hole.mouth + (level - hole.mouth.dot(axis)) * axis, axis));
+  return path;
+}
+
+Toolpath helixPaths(const std::vector<Hole>& holes, const Tool& tool, int setup, double clearance_above,
+                    const HoleOptions& options) {
+  Toolpath path;
+  if (holes.empty()) return path;
+  const Vec3 axis = runAxis(holes, "helixPaths", options);
+  // helixPath's level for a hole is the higher of its mouth + max(clearance_above, retract_height) and its material +
+  // holder_margin, both at or under `level`: so each hole's run starts and ends at `level` exactly.
+  const double level = clearanceLevel(holes, axis, clearance_above, options);
+  for (const Hole& hole : holes) {
+    const Toolpath one = helixPath(hole, tool, setup, level - hole.mouth.dot(axis), options);
+    for (const CutterLocation& point : one) push(path, point);
+  }
   return path;
 }
 
