@@ -179,9 +179,8 @@ Toolpath drillingPath(const std::vector<Hole>& holes, const Tool& tool, bool spo
 // the circle by at most helix_chord. Throws InputError for a tool that is not a flat end mill narrower than the bore.
 Toolpath helixPath(const Hole& hole, const Tool& tool, int setup, double clearance_above, const HoleOptions& options = {});
 // Helical milling of `holes` (one axis) one after the other, every one from and back to drillingPath's one clearance
-// level over them all: the rapids between holes run level at it. (Each hole at its own level, `clearance_above` over
-// its own mouth, left slanted rapids from a high mouth's level down to a low one's, through whatever stood between:
-// ANC101 in 5-axis mode, a 25.7 mm gouge.) Throws as drillingPath and helixPath do.
+// level over them all: the rapids between holes run level at it, never slanted from a high mouth's level down to a low
+// one's through what stands between. Throws as drillingPath and helixPath do.
 Toolpath helixPaths(const std::vector<Hole>& holes, const Tool& tool, int setup, double clearance_above,
                     const HoleOptions& options = {});
 

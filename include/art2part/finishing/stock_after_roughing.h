@@ -1,12 +1,11 @@
 // What roughing left, as finishing sees it along any direction of a setup. Roughing records the stock its last pass
 // left in each setup's own frame (RoughingPlan::stock_left); a 5-axis plan also finishes faces along their own
-// directions within a setup's tilt, where no such record exists. Taking "no record" as "no stock" let holders and
-// rapids run into what roughing never reached (ANC101 in 5-axis mode: 1 gouge and 4,819 collisions, all in
-// finishing along tilted directions). This answers from the in-process model instead (in_process_stock.h): the block
-// less every roughing operation of the setup and of the setups before it, projected along the direction. Its slabs
-// hold a superset of the material there (the model's film on cut faces included, up to InProcessStock::doubt()
-// thick), so a tool kept clear of them is clear of the stock; finishing passes run before later setups' roughing, and
-// earlier setups' finishing is not taken away (it only makes the stock smaller).
+// directions within a setup's tilt, where no such record exists, and no record is not no stock: a tool kept clear of
+// nothing runs its holder and rapids into what roughing never reached. This answers from the in-process model
+// instead (in_process_stock.h): the block less every roughing operation of the setup and of the setups before it,
+// projected along the direction. Its slabs hold a superset of the material there (the model's film on cut faces
+// included, up to film() thick), so a tool kept clear of them is clear of the stock; finishing passes run before later
+// setups' roughing, and earlier setups' finishing is not taken away (it only makes the stock smaller).
 #pragma once
 
 #include <map>

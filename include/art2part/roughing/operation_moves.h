@@ -44,11 +44,10 @@ struct LevelPiece {
   Region rings;           // the outer ring first, then its holes
 };
 
-// Every level's pieces, handed out one at a time in an order to cut them, each chosen from where the tool is after
-// the one before (the last piece's box said little: a long piece ends at one end, and every piece below it lay as
-// near). A piece is ready once every piece of a level above whose box lies within `reach` of its box is cut; among
-// the ready pieces, first the first piece of the top level, then the one nearest the tool (0 inside it; at a tie,
-// the deepest: down the pocket the tool is in).
+// Every level's pieces, handed out one at a time in an order to cut them, each chosen from where the tool ended the
+// one before (not from that piece as a whole: a long piece ends at one end of it). A piece is ready once every piece
+// of a level above whose box lies within `reach` of its box is cut; among the ready pieces, first the first piece of
+// the top level, then the one nearest the tool (0 inside it; at a tie, the deepest: down the pocket the tool is in).
 class PieceSchedule {
  public:
   PieceSchedule(const std::vector<ClearingLevel>& levels, double reach);
