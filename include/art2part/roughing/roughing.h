@@ -231,4 +231,9 @@ RoughingPlan planRoughing(const Part& part, const SetupPlan& setups, const ToolL
 // The stock of the plan in the part frame: the part's box grown by the margin, or the stock mesh.
 Mesh roughingStock(const Part& part, const RoughingOptions& options);
 
+// Takes away from `stock` what the operations of setups `first` to `last` cut (each with its tool from `library`):
+// the stock a later setup starts from, or finishing sees along any direction (stock_after_roughing.h).
+void removeOperations(InProcessStock& stock, const std::vector<RoughingOperation>& operations,
+                      const ToolLibrary& library, int first, int last);
+
 }  // namespace art2part

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 namespace art2part {
@@ -23,14 +24,7 @@ const InProcessStock& StockAfterRoughing::model(int setup) {
   if (!slot) {
     slot = std::make_unique<InProcessStock>(part_, stock_, options_.in_process_rays, options_.in_process_cell,
                                             options_.in_process_max_rays);
-    Toolpath cut;
-    std::vector<Tool> tools;
-    for (const RoughingOperation& op : roughing_.operations) {
-      if (op.setup > setup) continue;
-      cut.insert(cut.end(), op.path.begin(), op.path.end());
-      if (const Tool* t = library_.find(op.tool)) tools.push_back(*t);
-    }
-    slot->remove(cut, tools);
+    removeOperations(*slot, roughing_.operations, library_, std::numeric_limits<int>::min(), setup);
     film_ = slot->doubt();
   }
   return *slot;

@@ -231,16 +231,7 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
       break;
     }
     // What the earlier setups cut is gone from the stock this one starts from.
-    if (in_process && k > 0) {
-      Toolpath cut;
-      std::vector<Tool> tools;
-      for (const RoughingOperation& op : plan.operations)
-        if (op.setup == k - 1) {
-          cut.insert(cut.end(), op.path.begin(), op.path.end());
-          if (const Tool* t = library.find(op.tool)) tools.push_back(*t);
-        }
-      in_process->remove(cut, tools);
-    }
+    if (in_process && k > 0) removeOperations(*in_process, plan.operations, library, k - 1, k - 1);
     const Setup& setup = setups.setups[k];
     const InProcessStock* stock = k > 0 ? in_process.get() : nullptr;  // the first setup starts from the block
     const Tool* tool = forced ? forced : chooseRoughingTool(part, setup, main_tools, options, stock);
@@ -324,6 +315,18 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
   plan.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!plan.cancelled) reportProgress(progress, "roughing", 1.0, "roughing done", levels_done);
   return plan;
+}
+
+void removeOperations(InProcessStock& stock, const std::vector<RoughingOperation>& operations,
+                      const ToolLibrary& library, int first, int last) {
+  Toolpath cut;
+  std::vector<Tool> tools;
+  for (const RoughingOperation& op : operations)
+    if (op.setup >= first && op.setup <= last) {
+      cut.insert(cut.end(), op.path.begin(), op.path.end());
+      if (const Tool* t = library.find(op.tool)) tools.push_back(*t);
+    }
+  stock.remove(cut, tools);
 }
 
 }  // namespace art2part
