@@ -5,6 +5,8 @@
 // and keeping shanks and holders clear of stock that is long gone.
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <utility>
@@ -51,6 +53,7 @@ class InProcessStock {
   // cutting by it would trace as stock, round the part at every level: cut only this, keep holders, links and
   // descents clear of slabs(). Stock thinner than two cells along an axis, or within a cell of the part unless thicker
   // stock beyond it is proven, is not proven: a setup's levels near the part nest (roughing.cpp, nestCentres).
+  // The tests across each ray are kept until the next remove(): ask from one thread at a time.
   std::vector<Region> provenSlabs(const SetupFrame& frame, const std::vector<std::pair<double, double>>& slabs) const;
 
   // Where the faces the operations so far cut lie in each slab (within doubt() of it along the frame's z), projected
@@ -68,6 +71,10 @@ class InProcessStock {
   std::vector<Region> project(const SetupFrame& frame, const std::vector<std::pair<double, double>>& slabs,
                               Projection what) const;
   bool stockAround(const Vec3& p) const;
+  bool stockAlong(int axis, const Vec3& p) const;  // stockAround's test along one family
+  // stockAround at `p` in `span` of ray (iu, iv) of family `axis`: the other two families' tests depend only on the
+  // lattice cell p lies in along the ray, so they are asked once per cell (across_) until the model changes.
+  bool provenOnRay(int axis, int iu, int iv, const Span& span, const Vec3& p) const;
 
   static constexpr double kPartClearanceCells = 1;  // stockAround: no part nearer along any axis
 
@@ -76,6 +83,9 @@ class InProcessStock {
   std::unique_ptr<MeshDexels> part_;
   std::unique_ptr<PartDistance> distance_;
   std::map<std::string, ToolSolid> solids_;
+  // Per family, 2 bits per lattice cell along each ray (each ray whole 64-bit words, so the threads projecting their
+  // rows never share a word): 0 not asked, 1 the other families prove stock there, 2 they do not. remove() clears it.
+  mutable std::array<std::vector<std::uint64_t>, 3> across_;
 };
 
 }  // namespace art2part

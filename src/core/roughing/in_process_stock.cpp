@@ -38,6 +38,18 @@ struct Raster {
     const std::size_t k = static_cast<std::size_t>(j) * nx + i;
     bits[k >> 6] |= std::uint64_t(1) << (k & 63);
   }
+  // Every cell a segment along a raster axis crosses (a sample every half cell marks no other).
+  void markRun(const Point2& a, const Point2& b) {
+    const int i0 = static_cast<int>(std::floor((std::min(a.x(), b.x()) - x0) / cell));
+    const int i1 = static_cast<int>(std::floor((std::max(a.x(), b.x()) - x0) / cell));
+    const int j0 = static_cast<int>(std::floor((std::min(a.y(), b.y()) - y0) / cell));
+    const int j1 = static_cast<int>(std::floor((std::max(a.y(), b.y()) - y0) / cell));
+    for (int j = std::max(j0, 0); j <= std::min(j1, ny - 1); ++j)
+      for (int i = std::max(i0, 0); i <= std::min(i1, nx - 1); ++i) {
+        const std::size_t k = static_cast<std::size_t>(j) * nx + i;
+        bits[k >> 6] |= std::uint64_t(1) << (k & 63);
+      }
+  }
   bool marked(double x, double y) const {
     return at(static_cast<int>(std::floor((x - x0) / cell)), static_cast<int>(std::floor((y - y0) / cell)));
   }
@@ -165,6 +177,7 @@ void InProcessStock::remove(const Toolpath& path, const std::vector<Tool>& tools
   SweepOptions options;
   options.cusp_step = false;
   sweepToolpath(stock_, *part_, *distance_, shifted, solids_, options);
+  for (std::vector<std::uint64_t>& memo : across_) memo.clear();
 }
 
 std::vector<Region> InProcessStock::slabs(const SetupFrame& frame,
@@ -189,22 +202,47 @@ std::vector<Region> InProcessStock::cutSlabs(const SetupFrame& frame,
 // so does the allowance with the film over a face finished to it (0.9 cell along the normal at 1.5 mm cells and a
 // 0.3 mm allowance) along the axis nearest the face's normal when that lies within 25 deg of it.
 bool InProcessStock::stockAround(const Vec3& p) const {
+  for (int axis = 0; axis < 3; ++axis)
+    if (!stockAlong(axis, p)) return false;
+  return true;
+}
+
+bool InProcessStock::stockAlong(int axis, const Vec3& p) const {
   const DexelLattice& lattice = stock_.lattice;
   const double reach = lattice.spacing.maxCoeff(), clearance = kPartClearanceCells * reach;
-  for (int axis = 0; axis < 3; ++axis) {
-    const int u = DexelLattice::uAxis(axis), v = DexelLattice::vAxis(axis);
-    const int iu = static_cast<int>(std::floor((p[u] - lattice.box.min[u]) / lattice.spacing[u]));
-    const int iv = static_cast<int>(std::floor((p[v] - lattice.box.min[v]) / lattice.spacing[v]));
-    if (iu < 0 || iv < 0 || iu >= lattice.cells[u] || iv >= lattice.cells[v]) return false;
-    const int ray = lattice.rayIndex(axis, iu, iv);
-    const SpanList& spans = stock_.ray(axis, ray);
-    const double lo = p[axis] - reach, hi = p[axis] + reach;
-    auto it = std::upper_bound(spans.begin(), spans.end(), lo, [](double t, const Span& s) { return t < s.hi; });
-    if (it == spans.end() || it->lo > lo || it->hi < hi) return false;
-    for (const SolidSpan* s = part_->begin(axis, ray); s != part_->end(axis, ray); ++s)
-      if (s->hi >= p[axis] - clearance && s->lo <= p[axis] + clearance) return false;
-  }
+  const int u = DexelLattice::uAxis(axis), v = DexelLattice::vAxis(axis);
+  const int iu = static_cast<int>(std::floor((p[u] - lattice.box.min[u]) / lattice.spacing[u]));
+  const int iv = static_cast<int>(std::floor((p[v] - lattice.box.min[v]) / lattice.spacing[v]));
+  if (iu < 0 || iv < 0 || iu >= lattice.cells[u] || iv >= lattice.cells[v]) return false;
+  const int ray = lattice.rayIndex(axis, iu, iv);
+  const SpanList& spans = stock_.ray(axis, ray);
+  const double lo = p[axis] - reach, hi = p[axis] + reach;
+  auto it = std::upper_bound(spans.begin(), spans.end(), lo, [](double t, const Span& s) { return t < s.hi; });
+  if (it == spans.end() || it->lo > lo || it->hi < hi) return false;
+  for (const SolidSpan* s = part_->begin(axis, ray); s != part_->end(axis, ray); ++s)
+    if (s->hi >= p[axis] - clearance && s->lo <= p[axis] + clearance) return false;
   return true;
+}
+
+bool InProcessStock::provenOnRay(int axis, int iu, int iv, const Span& span, const Vec3& p) const {
+  const DexelLattice& lattice = stock_.lattice;
+  const int c = static_cast<int>(std::floor((p[axis] - lattice.box.min[axis]) / lattice.spacing[axis]));
+  if (c < 0 || c >= lattice.cells[axis]) return false;
+  // stockAlong on the ray itself, whose span holding p is known.
+  const double reach = lattice.spacing.maxCoeff(), clearance = kPartClearanceCells * reach;
+  if (span.lo > p[axis] - reach || span.hi < p[axis] + reach) return false;
+  const int ray = lattice.rayIndex(axis, iu, iv);
+  for (const SolidSpan* s = part_->begin(axis, ray); s != part_->end(axis, ray); ++s)
+    if (s->hi >= p[axis] - clearance && s->lo <= p[axis] + clearance) return false;
+  const int words = (lattice.cells[axis] + 31) / 32;  // per ray
+  std::uint64_t& word = across_[axis][static_cast<std::size_t>(ray) * words + c / 32];
+  const int shift = 2 * (c % 32);
+  std::uint64_t state = (word >> shift) & 3;
+  if (state == 0) {
+    state = stockAlong(DexelLattice::uAxis(axis), p) && stockAlong(DexelLattice::vAxis(axis), p) ? 1 : 2;
+    word |= state << shift;
+  }
+  return state == 1;
 }
 
 std::vector<Region> InProcessStock::project(const SetupFrame& frame,
@@ -240,6 +278,10 @@ std::vector<Region> InProcessStock::project(const SetupFrame& frame,
   }
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return slabs[a].first > slabs[b].first; });
   const double step = 0.5 * proto.cell;
+  if (proven)  // the first proof since the model changed: every cell unasked
+    for (int axis = 0; axis < 3; ++axis)
+      if (across_[axis].empty())
+        across_[axis].assign(static_cast<std::size_t>(lattice.rayCount(axis)) * ((lattice.cells[axis] + 31) / 32), 0);
   // The rays of rows [row0, row1) of family `axis` marked on `rasters`.
   const auto walk = [&](int axis, int row0, int row1, std::vector<Raster>& rasters) {
     const Vec3 along(frame.x[axis], frame.y[axis], frame.z[axis]);  // the rays' direction in the frame
@@ -290,6 +332,10 @@ std::vector<Region> InProcessStock::project(const SetupFrame& frame,
             }
             const Point2 p0(origin.x() + t0 * along.x(), origin.y() + t0 * along.y());
             const Point2 p1(origin.x() + t1 * along.x(), origin.y() + t1 * along.y());
+            if (!proven && (std::abs(p1.x() - p0.x()) < 1e-9 || std::abs(p1.y() - p0.y()) < 1e-9)) {
+              rasters[s].markRun(p0, p1);  // a frame square to the lattice: the samples below, at once
+              continue;
+            }
             const int n = static_cast<int>(std::ceil(std::max((p1 - p0).norm(), proven ? t1 - t0 : 0.0) / step)) + 1;
             for (int k = 0; k <= n; ++k) {
               const double f = static_cast<double>(k) / n;
@@ -298,7 +344,7 @@ std::vector<Region> InProcessStock::project(const SetupFrame& frame,
                 if (rasters[s].marked(q.x(), q.y())) continue;
                 Vec3 at = ray0;
                 at[axis] = t0 + (t1 - t0) * f;
-                if (!stockAround(at)) continue;
+                if (!provenOnRay(axis, iu, iv, span, at)) continue;
               }
               rasters[s].mark(q.x(), q.y());
             }
