@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <thread>
 
+#include "art2part/simulation/cylinder_sweep.h"
 #include "art2part/simulation/mesh_dexels.h"
 #include "art2part/simulation/part_distance.h"
 #include "art2part/simulation/sweep.h"
@@ -174,9 +175,35 @@ void InProcessStock::remove(const Toolpath& path, const std::vector<Tool>& tools
       shifted.back().tip += by * cl.axis.normalized();
     }
   if (shifted.empty()) return;
+  // Only flutes take material (sweep.h). Level and axial moves of cylindrical flutes are swept exactly
+  // (cylinder_sweep.h); the other runs pose by pose, each after the point it starts from and numbered apart (the
+  // setup field) so that none continues another. Removal does not depend on the order.
+  std::vector<SweptCylinder> exact;
+  Toolpath rest;
+  int runs_apart = 0;
+  for (const StraightRun& run : straightRuns(shifted)) {
+    const CutterLocation& end = shifted[run.last];
+    const CutterLocation& start = run.placed ? end : shifted[run.first - 1];
+    const std::size_t before = exact.size();
+    bool cylinders = true;
+    for (const ToolPiece& piece : solids_.at(end.tool).pieces) {
+      SweptCylinder c;
+      if (piece.zone != ToolZone::Flutes) continue;
+      if (!(cylinders = sweptCylinder(piece, {start.tip, start.axis}, {end.tip, end.axis}, c))) break;
+      exact.push_back(c);
+    }
+    if (cylinders) continue;
+    exact.resize(before);
+    for (int row = run.placed ? run.first : run.first - 1; row <= run.last; ++row) {
+      rest.push_back(shifted[row]);
+      rest.back().setup = runs_apart;
+    }
+    ++runs_apart;
+  }
+  removeSweptCylinders(stock_, exact);
   SweepOptions options;
   options.cusp_step = false;
-  sweepToolpath(stock_, *part_, *distance_, shifted, solids_, options);
+  if (!rest.empty()) sweepToolpath(stock_, *part_, *distance_, rest, solids_, options);
   for (std::vector<std::uint64_t>& memo : across_) memo.clear();
 }
 
