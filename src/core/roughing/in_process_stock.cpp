@@ -175,8 +175,9 @@ void InProcessStock::remove(const Toolpath& path, const std::vector<Tool>& tools
       shifted.back().tip += by * cl.axis.normalized();
     }
   if (shifted.empty()) return;
-  // Only flutes take material (sweep.h). Level and axial moves of cylindrical flutes are swept exactly
-  // (cylinder_sweep.h); the other runs pose by pose, each after the point it starts from and numbered apart (the
+  // Only flutes take material (sweep.h). Moves of cylindrical flutes that keep their axis are swept in closed form
+  // (cylinder_sweep.h), a ramp's pieces reaching at most half the erosion beyond its true sweep: still inside what
+  // the real tool swept. The other runs pose by pose, each after the point it starts from and numbered apart (the
   // setup field) so that none continues another. Removal does not depend on the order.
   std::vector<SweptCylinder> exact;
   Toolpath rest;
@@ -186,12 +187,10 @@ void InProcessStock::remove(const Toolpath& path, const std::vector<Tool>& tools
     const CutterLocation& start = run.placed ? end : shifted[run.first - 1];
     const std::size_t before = exact.size();
     bool cylinders = true;
-    for (const ToolPiece& piece : solids_.at(end.tool).pieces) {
-      SweptCylinder c;
-      if (piece.zone != ToolZone::Flutes) continue;
-      if (!(cylinders = sweptCylinder(piece, {start.tip, start.axis}, {end.tip, end.axis}, c))) break;
-      exact.push_back(c);
-    }
+    for (const ToolPiece& piece : solids_.at(end.tool).pieces)
+      if (piece.zone == ToolZone::Flutes &&
+          !(cylinders = sweptCylinders(piece, {start.tip, start.axis}, {end.tip, end.axis}, 0.5 * by, exact)))
+        break;
     if (cylinders) continue;
     exact.resize(before);
     for (int row = run.placed ? run.first : run.first - 1; row <= run.last; ++row) {

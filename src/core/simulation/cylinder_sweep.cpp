@@ -11,6 +11,7 @@ namespace {
 
 constexpr double kFar = 1e300;
 constexpr int kRowBlock = 4;  // rows per block handed out to the threads in turn
+constexpr double kLevelSlackMm = 1e-7;  // a move within this of level (of the axis) is level (axial)
 
 const Span kWholeRay{-kFar, kFar};
 
@@ -60,24 +61,33 @@ Box solidBox(const SweptCylinder& c) {
 
 }  // namespace
 
-bool sweptCylinder(const ToolPiece& piece, const ToolPose& start, const ToolPose& end, SweptCylinder& out) {
+bool sweptCylinders(const ToolPiece& piece, const ToolPose& start, const ToolPose& end, double axial_slack,
+                    std::vector<SweptCylinder>& out) {
   if (piece.sphere || piece.r0 != piece.r1 || (start.axis - end.axis).norm() > 1e-12) return false;
   const Vec3 axis = end.axis.normalized(), motion = end.tip - start.tip;
   const double along = motion.dot(axis);
   const Vec3 level = motion - along * axis;
-  out.axis = axis;
-  out.radius = piece.r0;
-  if (std::abs(along) <= kSweptCylinderSlackMm) {
-    out.from = start.tip;
-    out.to = start.tip + level;
-    out.h0 = piece.h0;
-    out.h1 = piece.h1;
+  SweptCylinder c;
+  c.axis = axis;
+  c.radius = piece.r0;
+  if (level.norm() <= kLevelSlackMm && std::abs(along) > kLevelSlackMm) {  // a plunge or a lift
+    c.from = c.to = start.tip;
+    c.h0 = piece.h0 + std::min(0.0, along);
+    c.h1 = piece.h1 + std::max(0.0, along);
+    out.push_back(c);
     return true;
   }
-  if (level.norm() > kSweptCylinderSlackMm) return false;
-  out.from = out.to = start.tip;  // a still cylinder over both ends
-  out.h0 = piece.h0 + std::min(0.0, along);
-  out.h1 = piece.h1 + std::max(0.0, along);
+  const int pieces = std::abs(along) <= kLevelSlackMm
+                         ? 1
+                         : static_cast<int>(std::ceil(std::abs(along) / std::max(axial_slack, kLevelSlackMm)));
+  const double rise = along / pieces;
+  for (int k = 0; k < pieces; ++k) {
+    c.from = start.tip + (static_cast<double>(k) / pieces) * motion;
+    c.to = c.from + level / pieces;
+    c.h0 = piece.h0 + std::min(0.0, rise);
+    c.h1 = piece.h1 + std::max(0.0, rise);
+    out.push_back(c);
+  }
   return true;
 }
 
