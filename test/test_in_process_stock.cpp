@@ -162,8 +162,8 @@ TEST(InProcessStock, CutSlabsHoldTheFacesACutLeftNotTheRawOnes) {
 }
 
 TEST(InProcessStock, AProofAskedBeforeACutIsAskedAgainAfterIt) {
-  // The proof's tests across each ray are kept between projections until the model changes: a model asked before a
-  // cut answers after it as one that never was. A pocket down the block's middle and a step along one side change
+  // The proof's tests across each ray and the projections asked are kept until the model changes: a model asked
+  // before a cut answers after it as one that never was. A pocket down the block's middle and a step along one side change
   // which cells the x- and y-rays prove while the z-rays beside them keep their material.
   const Part part = partFromMesh(test::box(Vec3(10, 10, 0), Vec3(30, 30, 4)), "slab");
   const Mesh stock = test::box(Vec3(0, 0, 0), Vec3(40, 40, 20));
@@ -177,13 +177,22 @@ TEST(InProcessStock, AProofAskedBeforeACutIsAskedAgainAfterIt) {
   cut.insert(cut.end(), step.begin(), step.end());
   InProcessStock asked(part, stock, 400, 2.0), fresh(part, stock, 400, 2.0);
   const std::vector<Region> before = asked.provenSlabs(top, slabs);
-  asked.provenSlabs(side, slabs);
+  for (const SetupFrame& frame : {top, side}) {
+    asked.provenSlabs(frame, slabs);
+    asked.slabs(frame, slabs);
+    asked.cutSlabs(frame, slabs);
+  }
   asked.remove(cut, {flat10()});
   fresh.remove(cut, {flat10()});
   for (const SetupFrame& frame : {top, side}) {
     const std::vector<Region> again = asked.provenSlabs(frame, slabs), once = fresh.provenSlabs(frame, slabs);
-    for (std::size_t s = 0; s < slabs.size(); ++s)
+    const std::vector<Region> may = asked.slabs(frame, slabs), may_once = fresh.slabs(frame, slabs);
+    const std::vector<Region> cuts = asked.cutSlabs(frame, slabs), cuts_once = fresh.cutSlabs(frame, slabs);
+    for (std::size_t s = 0; s < slabs.size(); ++s) {
       EXPECT_NEAR(regionArea(again[s]), regionArea(once[s]), 1e-6) << s;
+      EXPECT_NEAR(regionArea(may[s]), regionArea(may_once[s]), 1e-6) << s;
+      EXPECT_NEAR(regionArea(cuts[s]), regionArea(cuts_once[s]), 1e-6) << s;
+    }
   }
   // The pocket is gone from the proof from the top.
   EXPECT_TRUE(inside(before[1], 20, 20));

@@ -53,7 +53,8 @@ class InProcessStock {
   // cutting by it would trace as stock, round the part at every level: cut only this, keep holders, links and
   // descents clear of slabs(). Stock thinner than two cells along an axis, or within a cell of the part unless thicker
   // stock beyond it is proven, is not proven: a setup's levels near the part nest (roughing.cpp, nestCentres).
-  // The tests across each ray are kept until the next remove(): ask from one thread at a time.
+  // The tests across each ray, and each projection asked, are kept until the next remove(): ask from one thread at a
+  // time.
   std::vector<Region> provenSlabs(const SetupFrame& frame, const std::vector<std::pair<double, double>>& slabs) const;
 
   // Where the faces the operations so far cut lie in each slab (within doubt() of it along the frame's z), projected
@@ -69,7 +70,9 @@ class InProcessStock {
  private:
   enum class Projection { All, Proven, Cuts };
   std::vector<Region> project(const SetupFrame& frame, const std::vector<std::pair<double, double>>& slabs,
-                              Projection what) const;
+                              Projection what) const;  // walk(), or what it gave for the same question
+  std::vector<Region> walk(const SetupFrame& frame, const std::vector<std::pair<double, double>>& slabs,
+                           Projection what) const;
   bool stockAround(const Vec3& p) const;
   bool stockAlong(int axis, const Vec3& p) const;  // stockAround's test along one family
   // stockAround at `p` in `span` of ray (iu, iv) of family `axis`: the other two families' tests depend only on the
@@ -86,6 +89,15 @@ class InProcessStock {
   // Per family, 2 bits per lattice cell along each ray (each ray whole 64-bit words, so the threads projecting their
   // rows never share a word): 0 not asked, 1 the other families prove stock there, 2 they do not. remove() clears it.
   mutable std::array<std::vector<std::uint64_t>, 3> across_;
+  // The projections asked since the last remove(): a setup's passes share their levels (main and reach, the rest
+  // passes among them), so each set is walked once.
+  struct Asked {
+    Projection what;
+    SetupFrame frame;
+    std::vector<std::pair<double, double>> slabs;
+    std::vector<Region> regions;
+  };
+  mutable std::vector<Asked> asked_;
 };
 
 }  // namespace art2part

@@ -204,6 +204,7 @@ void InProcessStock::remove(const Toolpath& path, const std::vector<Tool>& tools
   options.cusp_step = false;
   if (!rest.empty()) sweepToolpath(stock_, *part_, *distance_, rest, solids_, options);
   for (std::vector<std::uint64_t>& memo : across_) memo.clear();
+  asked_.clear();
 }
 
 std::vector<Region> InProcessStock::slabs(const SetupFrame& frame,
@@ -274,6 +275,18 @@ bool InProcessStock::provenOnRay(int axis, int iu, int iv, const Span& span, con
 std::vector<Region> InProcessStock::project(const SetupFrame& frame,
                                             const std::vector<std::pair<double, double>>& slabs,
                                             Projection what) const {
+  const auto same = [&](const Asked& a) {
+    return a.what == what && a.slabs == slabs && a.frame.origin == frame.origin && a.frame.x == frame.x &&
+           a.frame.y == frame.y && a.frame.z == frame.z;
+  };
+  for (const Asked& a : asked_)
+    if (same(a)) return a.regions;
+  asked_.push_back({what, frame, slabs, walk(frame, slabs, what)});
+  return asked_.back().regions;
+}
+
+std::vector<Region> InProcessStock::walk(const SetupFrame& frame, const std::vector<std::pair<double, double>>& slabs,
+                                         Projection what) const {
   const bool proven = what == Projection::Proven;
   const double doubt_band = doubt();
   const DexelLattice& lattice = stock_.lattice;
@@ -309,7 +322,7 @@ std::vector<Region> InProcessStock::project(const SetupFrame& frame,
       if (across_[axis].empty())
         across_[axis].assign(static_cast<std::size_t>(lattice.rayCount(axis)) * ((lattice.cells[axis] + 31) / 32), 0);
   // The rays of rows [row0, row1) of family `axis` marked on `rasters`.
-  const auto walk = [&](int axis, int row0, int row1, std::vector<Raster>& rasters) {
+  const auto walkRows = [&](int axis, int row0, int row1, std::vector<Raster>& rasters) {
     const Vec3 along(frame.x[axis], frame.y[axis], frame.z[axis]);  // the rays' direction in the frame
     // A ray stands for a column a cell wide: its material reaches this far along the frame's z beyond the ray.
     const int u = DexelLattice::uAxis(axis), v = DexelLattice::vAxis(axis);
@@ -387,7 +400,7 @@ std::vector<Region> InProcessStock::project(const SetupFrame& frame,
     pool.emplace_back([&, t] {
       for (int axis = 0; axis < 3; ++axis) {
         const int rows = lattice.cells[DexelLattice::vAxis(axis)];
-        walk(axis, rows * t / threads, rows * (t + 1) / threads, own[t]);
+        walkRows(axis, rows * t / threads, rows * (t + 1) / threads, own[t]);
       }
     });
   for (std::thread& t : pool) t.join();
