@@ -46,7 +46,7 @@ class InProcessStock {
   std::vector<Region> slabs(const SetupFrame& frame, const std::vector<std::pair<double, double>>& slabs) const;
 
   // What of the stock in each slab the model proves is there: the points of its rays in the slab with material a
-  // cell every way along the three axes and no part within kPartClearanceCells along any (stockAround), projected and
+  // cell every way along the three axes and no part within kPartClearanceCells along any (provenOnRay), projected and
   // grown back by two cells (the proof stops a cell inside the material; a raster cell stands for a point in it).
   // Free of the film the model keeps on faces cut square to an axis or at an angle in a coordinate plane, and of the
   // part with the allowance and film over its faces finished by earlier setups, which slabs() holds and a setup
@@ -73,13 +73,15 @@ class InProcessStock {
                               Projection what) const;  // walk(), or what it gave for the same question
   std::vector<Region> walk(const SetupFrame& frame, const std::vector<std::pair<double, double>>& slabs,
                            Projection what) const;
-  bool stockAround(const Vec3& p) const;
-  bool stockAlong(int axis, const Vec3& p) const;  // stockAround's test along one family
-  // stockAround at `p` in `span` of ray (iu, iv) of family `axis`: the other two families' tests depend only on the
-  // lattice cell p lies in along the ray, so they are asked once per cell (across_) until the model changes.
+  // Stock at `p` (in `span` of ray (iu, iv) of family `axis`): stockAlong holds for the three families. The other two
+  // families' tests depend only on the lattice cell p lies in along the ray, so they are asked once per cell
+  // (across_) until the model changes.
   bool provenOnRay(int axis, int iu, int iv, const Span& span, const Vec3& p) const;
+  // One family's test: on its ray nearest p one span holds [p - cell, p + cell], and no part lies within
+  // kPartClearanceCells of p along it.
+  bool stockAlong(int axis, const Vec3& p) const;
 
-  static constexpr double kPartClearanceCells = 1;  // stockAround: no part nearer along any axis
+  static constexpr double kPartClearanceCells = 1;  // stockAlong: no part nearer along the ray
 
   Stock stock_;
   Stock raw_;  // the stock before any operation: its faces are exact, no film on them

@@ -222,18 +222,6 @@ std::vector<Region> InProcessStock::cutSlabs(const SetupFrame& frame,
   return project(frame, slabs, Projection::Cuts);
 }
 
-// Stock at `p`: material a cell every way along the three axes (on the nearest ray of each family, one span holds
-// [p - cell, p + cell] along the ray) and no part within kPartClearanceCells along any of them. A film the eroded
-// tools left on a cut face (at most half a cell's diagonal thick along the face's normal) fails the first test along
-// the axis nearest that normal for every face whose normal lies in a coordinate plane; the part fails the second, and
-// so does the allowance with the film over a face finished to it (0.9 cell along the normal at 1.5 mm cells and a
-// 0.3 mm allowance) along the axis nearest the face's normal when that lies within 25 deg of it.
-bool InProcessStock::stockAround(const Vec3& p) const {
-  for (int axis = 0; axis < 3; ++axis)
-    if (!stockAlong(axis, p)) return false;
-  return true;
-}
-
 bool InProcessStock::stockAlong(int axis, const Vec3& p) const {
   const DexelLattice& lattice = stock_.lattice;
   const double reach = lattice.spacing.maxCoeff(), clearance = kPartClearanceCells * reach;
@@ -251,6 +239,12 @@ bool InProcessStock::stockAlong(int axis, const Vec3& p) const {
   return true;
 }
 
+// Stock at `p`: material a cell every way along the three axes (on the nearest ray of each family, one span holds
+// [p - cell, p + cell] along the ray) and no part within kPartClearanceCells along any of them. A film the eroded
+// tools left on a cut face (at most half a cell's diagonal thick along the face's normal) fails the first test along
+// the axis nearest that normal for every face whose normal lies in a coordinate plane; the part fails the second, and
+// so does the allowance with the film over a face finished to it (0.9 cell along the normal at 1.5 mm cells and a
+// 0.3 mm allowance) along the axis nearest the face's normal when that lies within 25 deg of it.
 bool InProcessStock::provenOnRay(int axis, int iu, int iv, const Span& span, const Vec3& p) const {
   const DexelLattice& lattice = stock_.lattice;
   const int c = static_cast<int>(std::floor((p[axis] - lattice.box.min[axis]) / lattice.spacing[axis]));
