@@ -8,7 +8,6 @@
 // setups' roughing, and earlier setups' finishing is not taken away (it only makes the stock smaller).
 #pragma once
 
-#include <deque>
 #include <map>
 #include <memory>
 #include <utility>
@@ -33,8 +32,9 @@ class StockAfterRoughing {
 
   // The stock left once setup `setup`'s roughing is done, in `frame`: slabs top down, about twice the model's cell
   // thick, from the stock's top to its bottom along frame.z (SlabState::remaining: the material's projection, the
-  // part included, as RoughingPlan::stock_left holds it). Kept: finishing's later rounds ask again.
-  const std::vector<SlabState>& slabs(int setup, const SetupFrame& frame);
+  // part included, as RoughingPlan::stock_left holds it). The model keeps what it projected: finishing's later rounds
+  // ask again at no cost.
+  std::vector<SlabState> slabs(int setup, const SetupFrame& frame);
   // The same between the heights of `extents` (lo, hi along frame.z).
   std::vector<Region> slabs(int setup, const SetupFrame& frame, const std::vector<std::pair<double, double>>& extents);
 
@@ -58,12 +58,6 @@ class StockAfterRoughing {
   const ToolLibrary& library_;
   RoughingOptions::RawStock options_;
   std::map<int, std::unique_ptr<InProcessStock>> models_;  // per setup, built when first asked
-  struct Asked {
-    int setup;
-    SetupFrame frame;
-    std::vector<SlabState> slabs;
-  };
-  std::deque<Asked> asked_;  // slabs() answers so far (a deque: the references handed out stay valid)
   double film_ = 0;
 };
 

@@ -80,8 +80,9 @@ class InProcessStock {
   // One family's test: on its ray nearest p one span holds [p - cell, p + cell], and no part lies within
   // kPartClearanceCells of p along it.
   bool stockAlong(int axis, const Vec3& p) const;
+  bool partNear(int axis, int ray, double t) const;  // part within kPartClearanceCells of t along the ray
 
-  static constexpr double kPartClearanceCells = 1;  // stockAlong: no part nearer along the ray
+  static constexpr double kPartClearanceCells = 1;  // partNear
 
   Stock stock_;
   Stock raw_;  // the stock before any operation: its faces are exact, no film on them

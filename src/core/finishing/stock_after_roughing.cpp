@@ -30,10 +30,7 @@ const InProcessStock& StockAfterRoughing::model(int setup) {
   return *slot;
 }
 
-const std::vector<SlabState>& StockAfterRoughing::slabs(int setup, const SetupFrame& frame) {
-  for (const Asked& a : asked_)
-    if (a.setup == setup && a.frame.origin == frame.origin && a.frame.x == frame.x && a.frame.z == frame.z)
-      return a.slabs;
+std::vector<SlabState> StockAfterRoughing::slabs(int setup, const SetupFrame& frame) {
   const InProcessStock& stock = model(setup);
   double top = -1e300, bottom = 1e300;
   for (const Vec3& v : stock_.vertices) {
@@ -41,13 +38,13 @@ const std::vector<SlabState>& StockAfterRoughing::slabs(int setup, const SetupFr
     top = std::max(top, z);
     bottom = std::min(bottom, z);
   }
-  std::vector<SlabState>& out = asked_.emplace_back(Asked{setup, frame, {}}).slabs;
-  if (!(top > bottom)) return out;
+  if (!(top > bottom)) return {};
   const int n = std::max(1, static_cast<int>(std::ceil((top - bottom) / (kSlabCells * stock.cell()))));
   std::vector<std::pair<double, double>> extents;
   for (int i = 0; i < n; ++i)
     extents.emplace_back(top - (top - bottom) * (i + 1) / n, top - (top - bottom) * i / n);
   std::vector<Region> regions = slabs(setup, frame, extents);
+  std::vector<SlabState> out;
   for (int i = 0; i < n; ++i) out.push_back({extents[i].first, extents[i].second, std::move(regions[i])});
   return out;
 }

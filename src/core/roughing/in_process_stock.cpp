@@ -224,7 +224,7 @@ std::vector<Region> InProcessStock::cutSlabs(const SetupFrame& frame,
 
 bool InProcessStock::stockAlong(int axis, const Vec3& p) const {
   const DexelLattice& lattice = stock_.lattice;
-  const double reach = lattice.spacing.maxCoeff(), clearance = kPartClearanceCells * reach;
+  const double reach = lattice.spacing.maxCoeff();
   const int u = DexelLattice::uAxis(axis), v = DexelLattice::vAxis(axis);
   const int iu = static_cast<int>(std::floor((p[u] - lattice.box.min[u]) / lattice.spacing[u]));
   const int iv = static_cast<int>(std::floor((p[v] - lattice.box.min[v]) / lattice.spacing[v]));
@@ -233,10 +233,14 @@ bool InProcessStock::stockAlong(int axis, const Vec3& p) const {
   const SpanList& spans = stock_.ray(axis, ray);
   const double lo = p[axis] - reach, hi = p[axis] + reach;
   auto it = std::upper_bound(spans.begin(), spans.end(), lo, [](double t, const Span& s) { return t < s.hi; });
-  if (it == spans.end() || it->lo > lo || it->hi < hi) return false;
+  return it != spans.end() && it->lo <= lo && it->hi >= hi && !partNear(axis, ray, p[axis]);
+}
+
+bool InProcessStock::partNear(int axis, int ray, double t) const {
+  const double clearance = kPartClearanceCells * stock_.lattice.spacing.maxCoeff();
   for (const SolidSpan* s = part_->begin(axis, ray); s != part_->end(axis, ray); ++s)
-    if (s->hi >= p[axis] - clearance && s->lo <= p[axis] + clearance) return false;
-  return true;
+    if (s->hi >= t - clearance && s->lo <= t + clearance) return true;
+  return false;
 }
 
 // Stock at `p`: material a cell every way along the three axes (on the nearest ray of each family, one span holds
@@ -250,11 +254,9 @@ bool InProcessStock::provenOnRay(int axis, int iu, int iv, const Span& span, con
   const int c = static_cast<int>(std::floor((p[axis] - lattice.box.min[axis]) / lattice.spacing[axis]));
   if (c < 0 || c >= lattice.cells[axis]) return false;
   // stockAlong on the ray itself, whose span holding p is known.
-  const double reach = lattice.spacing.maxCoeff(), clearance = kPartClearanceCells * reach;
-  if (span.lo > p[axis] - reach || span.hi < p[axis] + reach) return false;
+  const double reach = lattice.spacing.maxCoeff();
   const int ray = lattice.rayIndex(axis, iu, iv);
-  for (const SolidSpan* s = part_->begin(axis, ray); s != part_->end(axis, ray); ++s)
-    if (s->hi >= p[axis] - clearance && s->lo <= p[axis] + clearance) return false;
+  if (span.lo > p[axis] - reach || span.hi < p[axis] + reach || partNear(axis, ray, p[axis])) return false;
   const int words = (lattice.cells[axis] + 31) / 32;  // per ray
   std::uint64_t& word = across_[axis][static_cast<std::size_t>(ray) * words + c / 32];
   const int shift = 2 * (c % 32);
