@@ -181,14 +181,19 @@ TEST(OffsetRegion, GrowsARegionWhoseHoleTouchesItsLowestVertex) {
   EXPECT_GT(regionArea(shrunk), 50);
 }
 
-TEST(ForbiddenRegion, GrownLevelByLevelIsTheWholeRegionUpToItsTolerances) {
-  const Mesh part = sphere(25, 48, 96);
+namespace {
+
+std::vector<double> sphereLevels() {
+  std::vector<double> levels;
+  for (double z = 30; z >= -30; z -= 1) levels.push_back(z);
+  return levels;
+}
+
+// The region grown level by level from `shadows` (at `levels`) against the definition, whole, at every level.
+void expectGrownIsTheWholeRegion(const ShadowStack& shadows, const std::vector<double>& levels) {
   const double r = 5.3;  // cutter radius + allowance
   const std::vector<BodyZone> zones{{12, 40, 6}, {40, 80, 20}};
   const double margin = 0.5;
-  std::vector<double> levels;
-  for (double z = 30; z >= -30; z -= 1) levels.push_back(z);
-  const ShadowStack shadows(part.vertices, part.triangles, levels);
   ForbiddenRegion grown(shadows, r, zones, margin, true);
   ForbiddenRegion against_part(shadows, r, zones, margin, false);
   // The stock left in each slab: the slab's shadow with a skin that grows downwards (a part section is always in it),
@@ -226,6 +231,36 @@ TEST(ForbiddenRegion, GrownLevelByLevelIsTheWholeRegionUpToItsTolerances) {
     left_above.push_back({top, &remaining.back()});
     top = z;
   }
+}
+
+}  // namespace
+
+TEST(ForbiddenRegion, GrownLevelByLevelIsTheWholeRegionUpToItsTolerances) {
+  const Mesh part = sphere(25, 48, 96);
+  expectGrownIsTheWholeRegion(ShadowStack(part.vertices, part.triangles, sphereLevels()), sphereLevels());
+}
+
+// A setup's passes share their shadows: a stack taken after others at other heights (coarser levels, levels between
+// its own, out of order) has the same shadows as one of its own, and gains that grow the same region (each of its
+// gains lists those of the heights kept between its level and the one above).
+TEST(ForbiddenRegion, GrownFromShadowsSharedWithOtherLevelsIsTheWholeRegion) {
+  const Mesh part = sphere(25, 48, 96);
+  SetupShadows shared(part.vertices, part.triangles);
+  shared.stack({-25.5, 24.5, 10, -0.25});
+  std::vector<double> between;
+  for (double z = -29.5; z <= 30; z += 3) between.push_back(z);
+  shared.stack(between);
+  const ShadowStack shadows = shared.stack(sphereLevels());
+  const ShadowStack own(part.vertices, part.triangles, sphereLevels());
+  Region gained;  // the union of the stack's gains down to the level
+  for (const double z : sphereLevels()) {
+    const Region& a = shadows.at(z);
+    const Region& b = own.at(z);
+    EXPECT_LT(regionArea(subtract(a, b)) + regionArea(subtract(b, a)), 1e-4) << "z " << z;
+    if (shadows.indexAt(z) >= 0) gained = unite(gained, shadows.gain(shadows.indexAt(z)));
+    EXPECT_LT(regionArea(subtract(a, gained)), 1e-3) << "z " << z;
+  }
+  expectGrownIsTheWholeRegion(shadows, sphereLevels());
 }
 
 // Shadows of `part` seen along `frame` at the levels of a flat10 rest pass after flat20 (2 and 10 mm step-downs plus

@@ -268,11 +268,17 @@ void expectLevelCutsWithinTheStepDown(const RoughingPlan& roughing, const Verifi
 TEST(Shadow, LPartShadowIsWhatLiesAbove) {
   const Part part = lPart();
   SetupFrame frame;  // the part frame itself
-  ShadowSweep sweep(toFrame(part.mesh.vertices, frame), part.mesh.triangles);
-  EXPECT_TRUE(regionEmpty(sweep.shadowAt(25)));
-  EXPECT_NEAR(regionArea(sweep.shadowAt(15)), 20 * 40, 1e-6);
-  EXPECT_NEAR(regionArea(sweep.shadowAt(10)), 60 * 40, 1e-6);  // the step's floor is at the level: above it
-  EXPECT_NEAR(regionArea(sweep.shadowAt(-1)), 60 * 40, 1e-6);
+  SetupShadows shadows(toFrame(part.mesh.vertices, frame), part.mesh.triangles);
+  EXPECT_TRUE(regionEmpty(shadows.at(25)));
+  EXPECT_NEAR(regionArea(shadows.at(15)), 20 * 40, 1e-6);
+  EXPECT_NEAR(regionArea(shadows.at(10)), 60 * 40, 1e-6);  // the step's floor is at the level: above it
+  EXPECT_NEAR(regionArea(shadows.at(-1)), 60 * 40, 1e-6);
+  // Asked out of order, from the nearest kept height above: the same shadows.
+  SetupShadows upward(toFrame(part.mesh.vertices, frame), part.mesh.triangles);
+  EXPECT_NEAR(regionArea(upward.at(-1)), 60 * 40, 1e-6);
+  EXPECT_NEAR(regionArea(upward.at(15)), 20 * 40, 1e-6);
+  EXPECT_NEAR(regionArea(upward.at(10)), 60 * 40, 1e-6);
+  EXPECT_TRUE(regionEmpty(upward.at(25)));
 }
 
 TEST(Shadow, StockSlabOfATiltedBoxIsItsSection) {

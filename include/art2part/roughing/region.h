@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <polyclipping/clipper.hpp>
 #include <vector>
 
@@ -56,11 +57,16 @@ class RegionFailureTally {
   RegionFailureTally& operator=(const RegionFailureTally&) = delete;
   long count() const { return count_; }
   static void countFailure();  // a failure on this thread: to its innermost tally, if any
+  static void countFailures(long n);  // n of them
 
  private:
   long count_ = 0;
   RegionFailureTally* outer_;
 };
+// parallelFor (common/parallel.h) on the machine's threads, with the Clipper failures on them counted on this thread's
+// innermost tally as if they had been its own.
+void parallelForRegions(int count, const std::function<void(int)>& body);
+
 bool regionEmpty(const Region& region);
 // Inside or on the boundary.
 bool regionContains(const Region& region, const Point2& p);

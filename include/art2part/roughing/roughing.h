@@ -177,6 +177,7 @@ struct RoughingPlan {
 
 // Where a roughing operation starts, beside its setup's block of stock.
 class InProcessStock;
+class SetupShadows;
 struct RoughingStart {
   std::vector<SlabState> previous;         // a rest pass: what the operation before it left, slab by slab from the
                                            // top; empty: the setup's main operation
@@ -185,6 +186,8 @@ struct RoughingStart {
                                            // Clearing::step_up_share of its step-down (a step-up pass)
   bool reach = false;                      // with `previous`: a longer tool than the main pass's at its own
                                            // step-down (a reach pass, RoughingOptions::Rest::reach)
+  SetupShadows* shadows = nullptr;         // the part's shadows in the setup's frame, shared by the setup's
+                                           // operations (from the part roughed, machiningSolid); none: its own
 };
 
 // One operation and the stock it leaves.
@@ -214,8 +217,13 @@ constexpr double kMostStepoverRatio = 0.9;      // passes must overlap or ridges
 constexpr double kRestToolRatio = 0.5;          // a rest (or 5-axis) tool is at most this of the tool before it
 constexpr double kSmallestRoughingTool = 3.0;   // mm: smaller mills step down a fifth of their diameter (finishing)
 std::vector<const Tool*> roughingTools(const ToolLibrary& library);
+// The choice measures each candidate against `shadows` (the part's in the setup's frame, shared with the setup's
+// operations) over the stock `in_process` proves (none: the block); the first form takes shadows of its own.
 const Tool* chooseRoughingTool(const Part& part, const Setup& setup, const std::vector<const Tool*>& candidates,
-                               const RoughingOptions& options, const InProcessStock* in_process = nullptr);
+                               const RoughingOptions& options);
+const Tool* chooseRoughingTool(const Part& part, const Setup& setup, const std::vector<const Tool*>& candidates,
+                               const RoughingOptions& options, const InProcessStock* in_process,
+                               SetupShadows& shadows);
 
 // mm between the passes of `tool`: options.clearing.stepover, else the tool's max_stepover, else
 // kRoughingStepoverRatio diameters; never above kMostStepoverRatio diameters.

@@ -5,6 +5,8 @@
 // Also the stock's projection per slab. Everything in a setup frame (x, y in the slice plane, z along the direction).
 #pragma once
 
+#include <functional>
+#include <map>
 #include <vector>
 
 #include "art2part/geometry/mesh.h"
@@ -19,50 +21,59 @@ Vec3 fromFrame(const Vec3& p, const SetupFrame& frame);  // back to the part fra
 
 constexpr double kThinGain = 0.002;  // mm
 
-class ShadowSweep {
- public:
-  // `vertices` in the setup frame, the mesh's triangles (outward, counter-clockwise seen from outside).
-  ShadowSweep(const std::vector<Vec3>& vertices, const std::vector<Triangle>& triangles);
-  // The shadow at z; calls must come with z decreasing. Material exactly at z counts as above it.
-  const Region& shadowAt(double z);
-  int slabTriangles() const { return slab_triangles_; }  // triangle pieces projected so far
-  // What the last shadowAt added to the shadow before it, less its pieces thinner than 2 kThinGain everywhere: disjoint
-  // from it, so the shadow lies within 2 kThinGain of the union of the gains (slivers of a wall a hair off the
-  // direction, thousands of them per level, whose offsets would cost as much as the whole outline's).
-  const Region& lastGain() const { return gain_; }
-
- private:
-  std::vector<Vec3> vertices_;
-  std::vector<Triangle> up_;        // non-vertical triangles, highest top first
-  std::vector<double> top_, bottom_;
-  std::size_t next_ = 0;            // first triangle of up_ not yet entered
-  std::vector<int> active_;         // entered triangles reaching below the previous level
-  double previous_z_;
-  Region shadow_, gain_;
-  int slab_triangles_ = 0;
-};
-
 // Shadows at a set of heights, for queries at any height: the shadow at the highest stored height at or below the one
 // asked (a superset of the exact shadow there, exact at the stored heights), empty above the part. Queries below the
-// lowest stored height are refused (std::out_of_range).
+// lowest stored height are refused (std::out_of_range). Built by SetupShadows.
 class ShadowStack {
  public:
   ShadowStack(const std::vector<Vec3>& vertices, const std::vector<Triangle>& triangles, std::vector<double> heights);
   const Region& at(double z) const;
-  int slabTriangles() const { return slab_triangles_; }
   // The index of the stored height whose shadow at(z) is, -1 where at(z) is empty (above the part); and what the
-  // shadow at stored height i gained over the one above it (disjoint pieces: the shadow at i is the union of the
-  // gains 0..i, up to slivers within 2 kThinGain of it). Together they let a caller grow an offset shadow level by
-  // level from the gains alone.
+  // shadow at stored height i gained over the one above it (pieces, disjoint from that shadow: the shadow at i is the
+  // union of the gains 0..i, up to slivers within 2 kThinGain of it). Together they let a caller grow an offset
+  // shadow level by level from the gains alone.
   int indexAt(double z) const;
   const Region& gain(int i) const { return gains_[i]; }
 
  private:
+  friend class SetupShadows;
+  ShadowStack() = default;
   std::vector<double> heights_;  // descending
   std::vector<Region> shadows_, gains_;
   double part_top_ = 0;
   Region empty_;
-  int slab_triangles_ = 0;
+};
+
+// The shadows of one part in one setup frame, each height's computed once and kept. The shadow at z is the nearest
+// kept one above it united with the pieces, between the two heights, of the triangles reaching into that slab (every
+// non-vertical triangle: for a closed mesh the up-facing ones would do, but a triangle wound the wrong way must not
+// open a hole, and the down-facing ones lie under material above anyway). The operations of a setup (the tool
+// choice, main, reach and rest passes) ask at levels that mostly repeat, and share the work; asked in descending
+// order alone it is the sweep from the top that a single stack would make.
+class SetupShadows {
+ public:
+  // `vertices` in the setup frame, the mesh's triangles.
+  SetupShadows(std::vector<Vec3> vertices, const std::vector<Triangle>& triangles);
+  // The shadow at z (material exactly at z counts as above it).
+  const Region& at(double z) { return keep(z).shadow; }
+  // The shadows at `heights` (any order, repeats allowed). A stack's gain at a height lists the kept gains of every
+  // kept height between it and the stack's height above (each gain is what its height added to the kept shadow above
+  // it when it was computed: pieces may repeat across heights, never go missing).
+  ShadowStack stack(std::vector<double> heights);
+
+ private:
+  struct Kept {
+    Region shadow;
+    // What it added to the kept shadow above it, less its pieces thinner than 2 kThinGain everywhere (slivers of a
+    // wall a hair off the direction, thousands of them per level, whose offsets would cost as much as the outline's).
+    Region gain;
+  };
+  const Kept& keep(double z);
+  std::vector<Vec3> vertices_;
+  std::vector<Triangle> up_;        // non-vertical triangles, highest top first
+  std::vector<double> top_, bottom_;
+  double part_top_;
+  std::map<double, Kept, std::greater<double>> kept_;  // highest first
 };
 
 // The projection of the stock between heights lo and hi (its convex hull there: exact for a box, conservative for a

@@ -1,32 +1,12 @@
-// Surface finishing's grids: threads, the grid, the body's clearance maps, following the CL surface, thinning.
+// Surface finishing's grids: the grid, the body's clearance maps, following the CL surface, thinning.
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <thread>
 
 #include "art2part/roughing/forbidden_region.h"
 #include "surface_passes.h"
 
 namespace art2part::surface {
-
-int threadCount(int requested) {
-  if (requested > 0) return requested;
-  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-}
-
-void parallelFor(int count, int threads, const std::function<void(int)>& body) {
-  const int n = std::min(threadCount(threads), std::max(1, count));
-  if (n <= 1) {
-    for (int k = 0; k < count; ++k) body(k);
-    return;
-  }
-  std::vector<std::thread> pool;
-  for (int t = 0; t < n; ++t)
-    pool.emplace_back([&, t] {
-      for (int k = t; k < count; k += n) body(k);
-    });
-  for (std::thread& thread : pool) thread.join();
-}
 
 int Grid::nearestI(double x) const {
   return std::clamp(static_cast<int>(std::lround((x - x0) / pitch)), 0, nx - 1);

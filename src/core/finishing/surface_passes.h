@@ -10,6 +10,7 @@
 #include <memory>
 #include <vector>
 
+#include "art2part/common/parallel.h"
 #include "art2part/finishing/drop_cutter.h"
 #include "art2part/finishing/surface_finishing.h"
 #include "art2part/geometry/part.h"
@@ -18,10 +19,6 @@
 namespace art2part::surface {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-// Runs body(k) for k in [0, count) on `threads` threads (0 = the hardware's), k interleaved over the threads.
-void parallelFor(int count, int threads, const std::function<void(int)>& body);
-int threadCount(int requested);
 
 // A regular x-y grid: node (i, j) at (x0 + i pitch, y0 + j pitch).
 struct Grid {

@@ -64,26 +64,31 @@ const Region& ForbiddenRegion::at(double z, const std::vector<StockLeft>& left_a
     if (!gain.empty()) slabs_counted_ = unite(slabs_counted_, gain);
     slab_gains_.push_back(dropThinPieces(gain, kThinGain));  // slivers: as the shadow's gains
   }
-  Region added;  // offset pieces of every layer, united with the region once
-  for (Layer& layer : layers_) {
-    Region fresh;  // disjoint pieces, listed
+  std::vector<Region> fresh(layers_.size());  // per layer, disjoint pieces, listed
+  for (std::size_t i = 0; i < layers_.size(); ++i) {
+    Layer& layer = layers_[i];
     if (layer.counts_stock) {
       // Slabs whose top is above the zone's bottom.
       for (; layer.next_slab < left_above.size() && left_above[layer.next_slab].top > z + layer.from; ++layer.next_slab)
-        append(fresh, slab_gains_[layer.next_slab]);
+        append(fresh[i], slab_gains_[layer.next_slab]);
     } else {
       // The shadow's gains down to the zone's bottom.
       const int last = shadows_.indexAt(z + layer.from);
-      for (; layer.next_gain <= last; ++layer.next_gain) append(fresh, shadows_.gain(layer.next_gain));
+      for (; layer.next_gain <= last; ++layer.next_gain) append(fresh[i], shadows_.gain(layer.next_gain));
     }
-    if (fresh.empty()) continue;
-    // Pieces gained at neighbouring heights touch: merged first, their offsets would overlap and the union of
-    // overlapping offsets is what costs. Then simplified and offset with chords as coarse as the layer allows, both
-    // paid for by a larger radius (the region only grows: never a collision for an approximation), as are the
-    // slivers the gains leave out.
-    fresh = simplifyRegion(unite(fresh, {}), layer.tolerance);
-    append(added, offsetRegion(fresh, layer.radius + 2 * layer.tolerance + 2 * kThinGain, layer.tolerance));
   }
+  // Pieces gained at neighbouring heights touch: merged first, their offsets would overlap and the union of
+  // overlapping offsets is what costs. Then simplified and offset with chords as coarse as the layer allows, both
+  // paid for by a larger radius (the region only grows: never a collision for an approximation), as are the slivers
+  // the gains leave out. The layers side by side.
+  parallelForRegions(static_cast<int>(layers_.size()), [&](int i) {
+    if (fresh[i].empty()) return;
+    const Layer& layer = layers_[i];
+    fresh[i] = offsetRegion(simplifyRegion(unite(fresh[i], {}), layer.tolerance),
+                            layer.radius + 2 * layer.tolerance + 2 * kThinGain, layer.tolerance);
+  });
+  Region added;  // offset pieces of every layer, united with the region once
+  for (const Region& grown : fresh) append(added, grown);
   if (!added.empty()) forbidden_ = unite(forbidden_, added);
   return forbidden_;
 }

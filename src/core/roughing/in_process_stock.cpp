@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <thread>
 
+#include "art2part/common/parallel.h"
 #include "art2part/simulation/cylinder_sweep.h"
 #include "art2part/simulation/mesh_dexels.h"
 #include "art2part/simulation/part_distance.h"
@@ -389,31 +389,27 @@ std::vector<Region> InProcessStock::walk(const SetupFrame& frame, const std::vec
   };
   // Every family of rays (a wall thinner than a cell that one family passes between is crossed by another), each
   // thread its share of every family's rows on rasters of its own, merged after.
-  const int threads = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, kMostThreads);
+  const int threads = std::min(threadCount(0), kMostThreads);
   std::vector<std::vector<Raster>> own(threads, std::vector<Raster>(slabs.size(), proto));
-  std::vector<std::thread> pool;
-  for (int t = 0; t < threads; ++t)
-    pool.emplace_back([&, t] {
-      for (int axis = 0; axis < 3; ++axis) {
-        const int rows = lattice.cells[DexelLattice::vAxis(axis)];
-        walkRows(axis, rows * t / threads, rows * (t + 1) / threads, own[t]);
-      }
-    });
-  for (std::thread& t : pool) t.join();
+  parallelFor(threads, threads, [&](int t) {
+    for (int axis = 0; axis < 3; ++axis) {
+      const int rows = lattice.cells[DexelLattice::vAxis(axis)];
+      walkRows(axis, rows * t / threads, rows * (t + 1) / threads, own[t]);
+    }
+  });
   std::vector<Raster>& rasters = own[0];
   for (int t = 1; t < threads; ++t)
     for (std::size_t s = 0; s < slabs.size(); ++s)
       for (std::size_t w = 0; w < rasters[s].bits.size(); ++w) rasters[s].bits[w] |= own[t][s].bits[w];
   // A cell more: material lies within half a cell's diagonal of a ray's (see remove), and the points marked are half
   // a cell apart.
-  std::vector<Region> out;
-  out.reserve(slabs.size());
   // Proven stock grows back by two cells: its proof stops a cell inside the material, and a marked cell stands for a
   // point in it.
   const int grow = what == Projection::Proven ? 2
                    : what == Projection::Cuts  ? static_cast<int>(std::ceil(doubt_band / proto.cell))
                                                : 1;
-  for (const Raster& r : rasters) out.push_back(rasterRegion(r, grow));
+  std::vector<Region> out(slabs.size());
+  parallelForRegions(static_cast<int>(slabs.size()), [&](int s) { out[s] = rasterRegion(rasters[s], grow); });
   return out;
 }
 

@@ -1,9 +1,13 @@
 #include "art2part/roughing/region.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
+#include <thread>
 #include <utility>
+
+#include "art2part/common/parallel.h"
 
 namespace art2part {
 
@@ -128,8 +132,22 @@ RegionFailureTally::~RegionFailureTally() {
   if (outer_) outer_->count_ += count_;
 }
 
-void RegionFailureTally::countFailure() {
-  if (innermost_tally) ++innermost_tally->count_;
+void RegionFailureTally::countFailure() { countFailures(1); }
+
+void RegionFailureTally::countFailures(long n) {
+  if (innermost_tally) innermost_tally->count_ += n;
+}
+
+void parallelForRegions(int count, const std::function<void(int)>& body) {
+  const std::thread::id caller = std::this_thread::get_id();
+  std::atomic<long> failures{0};
+  parallelFor(count, 0, [&](int k) {
+    if (std::this_thread::get_id() == caller) return body(k);  // one thread: the caller's tally counts them
+    const RegionFailureTally tally;
+    body(k);
+    failures += tally.count();
+  });
+  RegionFailureTally::countFailures(failures);
 }
 
 std::vector<Ring> regionRings(const Region& region) {

@@ -55,20 +55,37 @@ struct LevelDraft {
   Region doubtful;   // proven stock left out of the target as what may be the earlier setups' film round the skin
 };
 
-// The centres that clear `target` at level z: within the radius and `beyond` of it, out of `forbidden`. A check on
-// the grown region: no centre may lie in the shadow itself. Where one does (the grown region lost a piece of the
-// shadow: seen on CTC-02, setup 2.8 deg off z, tips 27 mm deep in the part), the level takes the shadow grown
-// directly (counted in `direct_levels`).
-Region levelCentres(const Region& target, const Region& forbidden, const Region& shadow, double r, double beyond,
-                    double allowance, int& direct_levels) {
-  if (regionEmpty(target)) return {};
-  Region centre = dropSlivers(subtract(offsetRegion(target, r + beyond), forbidden), kCentreSliverMm2);
+// The centres within `reach` (a target grown by the radius and how far beyond it centres may go), out of
+// `forbidden`. A check on the grown region: no centre may lie in the shadow itself. Where one does (the grown region
+// lost a piece of the shadow: seen on CTC-02, setup 2.8 deg off z, tips 27 mm deep in the part), the level takes the
+// shadow grown directly (counted in `direct_levels`).
+Region centresReaching(const Region& reach, const Region& forbidden, const Region& shadow, double r, double allowance,
+                       int& direct_levels) {
+  if (regionEmpty(reach)) return {};
+  Region centre = dropSlivers(subtract(reach, forbidden), kCentreSliverMm2);
   if (!regionEmpty(centre) && !regionEmpty(intersect(centre, shadow))) {
     ++direct_levels;
     centre = dropSlivers(subtract(centre, offsetRegion(shadow, r + allowance)), kCentreSliverMm2);
   }
   return centre;
 }
+
+// The centres that clear `target` at level z: within the radius and `beyond` of it, out of `forbidden`.
+Region levelCentres(const Region& target, const Region& forbidden, const Region& shadow, double r, double beyond,
+                    double allowance, int& direct_levels) {
+  if (regionEmpty(target)) return {};
+  return centresReaching(offsetRegion(target, r + beyond), forbidden, shadow, r, allowance, direct_levels);
+}
+
+// What one level of an operation is to remove, and the stock round it.
+struct LevelTarget {
+  Region stock;     // all the stock that may be in the slab
+  Region proven;    // what of it the model proves (the stock itself without a model)
+  Region doubtful;  // proven stock that may be the earlier setups' film round the skin (LevelDraft::doubtful)
+  Region target;    // what the operation is to remove
+  Region reach;     // where centres may go for it: the target grown by the radius and the centres' reach beyond it
+};
+constexpr std::size_t kTargetBlock = 8;  // levels whose targets are worked out side by side
 
 // Bottom up, each level of an operation over an in-process stock takes in what keeps the column over every cut of
 // the levels below clear, never into the forbidden region nor the part's shadow:
@@ -295,7 +312,8 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
   // so no zone bottom needs a shadow of its own.
   std::vector<double> heights;
   for (const RoughingLevel& l : levels) heights.push_back(l.z);
-  const ShadowStack shadows(g.part, part.mesh.triangles, heights);
+  const ShadowStack shadows = start_from.shadows ? start_from.shadows->stack(heights)
+                                                 : ShadowStack(g.part, part.mesh.triangles, heights);
   ForbiddenRegion forbidden_region(shadows, r + allowance, zones, options.clearing.holder_margin, true);
   ForbiddenRegion part_with_allowance(shadows, allowance, {}, 0, false);  // a rest pass's target: the stock beyond it
   std::vector<SlabState> slabs;
@@ -316,9 +334,37 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
     in_process_cuts = in_process->cutSlabs(setup.frame, extents);
   }
   const double beyond = before ? kRestCentreBeyondStockMm : kCentreBeyondStockMm;  // centres beyond the target
-  const Region no_skin;
   double top = g.stock_top;
   const std::string what = op.kind + ", " + tool.id + ", level ";
+  // What each level is to remove (LevelTarget), worked out kTargetBlock levels at a time side by side; then level
+  // after level its centres against the forbidden region, which grows with the stock each level leaves.
+  std::vector<LevelTarget> targets(levels.size());
+  const auto levelTarget = [&](std::size_t index, double z, double slab_top, const Region& skin) {
+    LevelTarget t;
+    t.stock = stockSlabRegion(g.stock.vertices, g.stock.triangles, z, slab_top);
+    if (in_process) t.stock = intersect(t.stock, in_process_slabs[index]);
+    if (before) {
+      const Region* left = beforeRemaining(*before, z, slab_top);
+      t.stock = left ? intersect(t.stock, *left) : Region{};
+    }
+    // What this operation is to remove: all the stock (that earlier setups' model proves there, less what lies within
+    // its doubt of both the skin and a face they cut: the stairs and film they left round the part, which a pass
+    // would trace at every level for next to nothing), or for a rest pass what of it lies beyond the allowance.
+    // Shanks, holders and links keep clear of all of `stock`.
+    t.proven = in_process ? intersect(t.stock, in_process_proven[index]) : t.stock;
+    if (in_process && !regionEmpty(in_process_cuts[index])) {
+      t.doubtful = intersect(t.proven, intersect(offsetRegion(skin, in_process->doubt()), in_process_cuts[index]));
+      if (before) t.doubtful = subtract(t.doubtful, skin);
+    }
+    t.target = subtract(t.proven, t.doubtful);
+    if (before) {
+      const Region beyond_skin = subtract(t.target, skin);
+      t.target = dropSlivers(offsetRegion(offsetRegion(beyond_skin, -kRestTargetOpeningMm), kRestTargetOpeningMm),
+                             kRestTargetSliverMm2);
+    }
+    t.reach = regionEmpty(t.target) ? Region{} : offsetRegion(t.target, r + beyond);
+    return t;
+  };
   for (RoughingLevel& level : levels) {
     const std::size_t index = &level - levels.data();
     if (!reportProgress(progress, "roughing", static_cast<double>(index) / levels.size(),
@@ -328,30 +374,18 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
       levels.resize(index);
       break;
     }
+    if (index % kTargetBlock == 0) {
+      const std::size_t block = std::min(kTargetBlock, levels.size() - index);
+      std::vector<Region> skins(block);  // the part with the allowance: a first main pass has no use for it
+      if (in_process || before)
+        for (std::size_t j = 0; j < block; ++j) skins[j] = part_with_allowance.at(levels[index + j].z, {});
+      parallelForRegions(static_cast<int>(block), [&](int j) {
+        const std::size_t k = index + j;
+        targets[k] = levelTarget(k, levels[k].z, k == 0 ? g.stock_top : levels[k - 1].z, skins[j]);
+      });
+    }
     const double z = level.z;
-    Region stock = stockSlabRegion(g.stock.vertices, g.stock.triangles, z, top);
-    if (in_process) stock = intersect(stock, in_process_slabs[index]);
-    if (before) {
-      const Region* left = beforeRemaining(*before, z, top);
-      stock = left ? intersect(stock, *left) : Region{};
-    }
-    // What this operation is to remove: all the stock (that earlier setups' model proves there, less what lies within
-    // its doubt of both the skin and a face they cut: the stairs and film they left round the part, which a pass
-    // would trace at every level for next to nothing), or for a rest pass what of it lies beyond the allowance.
-    // Shanks, holders and links keep clear of all of `stock`.
-    const Region proven = in_process ? intersect(stock, in_process_proven[index]) : stock;
-    const Region& skin = in_process || before ? part_with_allowance.at(z, {}) : no_skin;  // a first main pass: unused
-    Region doubtful;
-    if (in_process && !regionEmpty(in_process_cuts[index])) {
-      doubtful = intersect(proven, intersect(offsetRegion(skin, in_process->doubt()), in_process_cuts[index]));
-      if (before) doubtful = subtract(doubtful, skin);
-    }
-    Region target = subtract(proven, doubtful);
-    if (before) {
-      const Region beyond_skin = subtract(target, skin);
-      target = dropSlivers(offsetRegion(offsetRegion(beyond_skin, -kRestTargetOpeningMm), kRestTargetOpeningMm),
-                           kRestTargetSliverMm2);
-    }
+    LevelTarget& target = targets[index];
     // The cutter against the part, shank and holder against the part and the stock left above; every level above's
     // region is in it (the column over every cutting point is clear).
     const Region& forbidden = forbidden_region.at(z, left_above);
@@ -363,19 +397,26 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
     clear.descents_clear = in_process == nullptr;
     if (!by_engagement) clear.stepover = slabStepover(tool, clearing.stepover, top - z);
     else clear.engagement_deg = slabEngagement(tool, top - z);
-    clear.centre = levelCentres(target, forbidden, shadows.at(z), r, beyond, allowance, op.direct_levels);
+    clear.centre = centresReaching(target.reach, forbidden, shadows.at(z), r, allowance, op.direct_levels);
     if (before && options.rest.least_target_mm2 > 0)  // only where its sweep meets stock it is to remove
-      clear.centre = piecesReaching(clear.centre, target, r - kClearedInsetMm, options.rest.least_target_mm2);
+      clear.centre = piecesReaching(clear.centre, target.target, r - kClearedInsetMm, options.rest.least_target_mm2);
     // The levels below see the stock this one leaves (conservative: nesting only adds to its centre).
     Region cleared = offsetRegion(clear.centre, r - kClearedInsetMm);
-    drafts_left.push_back(subtract(stock, cleared));
+    drafts_left.push_back(subtract(target.stock, cleared));
     left_above.push_back({top, &drafts_left.back()});
-    drafts.push_back({stock, proven, forbidden, std::move(clear), std::move(cleared), std::move(doubtful)});
+    drafts.push_back({std::move(target.stock), std::move(target.proven), forbidden, std::move(clear),
+                      std::move(cleared), std::move(target.doubtful)});
     top = z;
   }
   if (in_process)
     nestCentres(drafts, shadows, r, beyond, allowance, before ? 0.0 : kNestBandCells * in_process->cell(), op);
-  for (std::size_t index = 0; index < drafts.size(); ++index) {
+  // Each level's slabs and sweeps from its draft, the levels side by side (their region work is independent).
+  const std::size_t n = drafts.size();
+  slabs.resize(n);
+  planned.slabs.resize(n);
+  planned.swept.resize(n);
+  std::vector<double> removal(n, 0.0);
+  parallelForRegions(static_cast<int>(n), [&](int index) {
     LevelDraft& draft = drafts[index];
     RoughingLevel& level = levels[index];
     ClearingLevel& clear = draft.clear;
@@ -399,17 +440,20 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
       Region reached = !by_engagement || regionEmpty(clear.centre)
                            ? swept
                            : offsetRegion(clear.centre, r - kEngagementReachShortfallMm);
-      planned.slabs.push_back({z, top, subtract(link_stock, reached)});
-      planned.swept.push_back(std::move(reached));
+      planned.slabs[index] = {z, top, subtract(link_stock, reached)};
+      planned.swept[index] = std::move(reached);
     } else {
-      planned.slabs.push_back(slab);
-      planned.swept.push_back(swept);
+      planned.slabs[index] = slab;
+      planned.swept[index] = swept;
     }
-    op.planned_removal_mm3 += regionArea(intersect(draft.proven, swept)) * (top - z);  // not the model's film
+    removal[index] = regionArea(intersect(draft.proven, swept)) * (top - z);  // not the model's film
     level.remaining_mm2 = regionArea(slab.remaining);
     level.rings = static_cast<int>(clear.centre.size());
-    slabs.push_back(std::move(slab));
-    planned.levels.push_back(std::move(clear));
+    slabs[index] = std::move(slab);
+  });
+  for (std::size_t index = 0; index < n; ++index) {
+    op.planned_removal_mm3 += removal[index];
+    planned.levels.push_back(std::move(drafts[index].clear));
   }
   OperationMovesOptions moves_options;
   moves_options.clearing = clearing;

@@ -48,9 +48,9 @@ DroppedOperation droppedPass(const RoughingOperation& op, double share, double p
   return droppedOperation(op, line);
 }
 
-// The tool choice measures each candidate on kChoiceLevels levels evenly down the stock, against shadows every
-// kChoiceShadowSpacingMm above the lowest (for shanks and holders); the centre may go kChoiceCentreBeyondMm beyond
-// the stock, as in roughSetup.
+// The tool choice measures each candidate on kChoiceLevels levels evenly down the stock, against shadows at levels
+// kChoiceShadowSpacingMm apart above the lowest (for shanks and holders): the levels of a rest pass at its default
+// step-down, whose shadows it shares. The centre may go kChoiceCentreBeyondMm beyond the stock, as in roughSetup.
 constexpr int kChoiceLevels = 8;
 constexpr double kChoiceShadowSpacingMm = 2;
 constexpr double kChoiceCentreBeyondMm = 1.0;
@@ -82,7 +82,14 @@ DroppedOperation droppedOperation(const RoughingOperation& op, std::string reaso
 }
 
 const Tool* chooseRoughingTool(const Part& part, const Setup& setup, const std::vector<const Tool*>& candidates,
-                               const RoughingOptions& options, const InProcessStock* in_process) {
+                               const RoughingOptions& options) {
+  SetupShadows shadows(toFrame(part.mesh.vertices, setup.frame), part.mesh.triangles);
+  return chooseRoughingTool(part, setup, candidates, options, nullptr, shadows);
+}
+
+const Tool* chooseRoughingTool(const Part& part, const Setup& setup, const std::vector<const Tool*>& candidates,
+                               const RoughingOptions& options, const InProcessStock* in_process,
+                               SetupShadows& setup_shadows) {
   if (candidates.empty()) return nullptr;
   const std::vector<Vec3> vertices = toFrame(part.mesh.vertices, setup.frame);
   Mesh stock = roughingStock(part, options);
@@ -111,16 +118,25 @@ const Tool* chooseRoughingTool(const Part& part, const Setup& setup, const std::
       const std::vector<Region> left = in_process->provenSlabs(setup.frame, extents);  // what a tool would cut
       for (int i = 0; i < n; ++i) stocks[i] = intersect(stocks[i], left[i]);
     }
-    // Shadows at the levels and every 2 mm above them (for the shanks and holders).
-    for (double h = zs.back(); h <= top; h += kChoiceShadowSpacingMm) heights.push_back(h);
+    // Shadows at the levels and above them at the rest passes' levels (for the shanks and holders).
+    for (const RoughingLevel& l : roughingLevels(part, vertices, top, bottom, kChoiceShadowSpacingMm, options))
+      if (l.z >= zs.back()) heights.push_back(l.z);
     heights.insert(heights.end(), zs.begin(), zs.end());
-    const ShadowStack shadows(vertices, part.mesh.triangles, heights);
+    const ShadowStack shadows = setup_shadows.stack(heights);
     // The reference is what the smallest tool sweeps (a smaller tool reaches at least as far, up to its shorter
-    // reach); then the largest that sweeps the fraction of it. Two or three evaluations on most parts.
-    const double best = sweptArea(*candidates.back(), zs, shadows, stocks, options);
+    // reach); then the largest that sweeps the fraction of it. Two or three evaluations on most parts: the reference
+    // and the largest side by side.
+    std::vector<double> area(candidates.size(), -1);
+    const std::size_t first[] = {candidates.size() - 1, 0};
+    parallelForRegions(candidates.size() > 1 ? 2 : 1, [&](int j) {
+      area[first[j]] = sweptArea(*candidates[first[j]], zs, shadows, stocks, options);
+    });
+    const double best = area.back();
     if (best <= 0) continue;
-    for (const Tool* tool : candidates)
-      if (sweptArea(*tool, zs, shadows, stocks, options) >= options.clearing.tool_area_fraction * best) return tool;
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      if (area[i] < 0) area[i] = sweptArea(*candidates[i], zs, shadows, stocks, options);
+      if (area[i] >= options.clearing.tool_area_fraction * best) return candidates[i];
+    }
     return candidates.back();
   }
   return nullptr;
@@ -234,10 +250,12 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
     if (in_process && k > 0) removeOperations(*in_process, plan.operations, library, k - 1, k - 1);
     const Setup& setup = setups.setups[k];
     const InProcessStock* stock = k > 0 ? in_process.get() : nullptr;  // the first setup starts from the block
-    const Tool* tool = forced ? forced : chooseRoughingTool(part, setup, main_tools, options, stock);
+    SetupShadows shadows(toFrame(part.mesh.vertices, setup.frame), part.mesh.triangles);
+    const Tool* tool = forced ? forced : chooseRoughingTool(part, setup, main_tools, options, stock, shadows);
     if (!tool) continue;
     RoughingStart from;
     from.earlier = stock;
+    from.shadows = &shadows;
     RoughingPass main = roughSetup(part, setup, k, *tool, options, from, within);
     levels_done += static_cast<long>(main.operation.levels.size());
     if (main.cancelled) {
@@ -263,6 +281,7 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
       RoughingStart after;
       after.previous = left;
       after.earlier = stock;
+      after.shadows = &shadows;
       after.step_up = pass == -2;
       after.reach = pass == -1;
       RoughingPass op = roughSetup(part, setup, k, *rest, options, after, within);

@@ -6,6 +6,7 @@
 #include <functional>
 #include <numeric>
 #include <stdexcept>
+#include <utility>
 
 namespace art2part {
 
@@ -74,15 +75,12 @@ Ring clipToSlab(const std::vector<Vec3>& v, const Triangle& tri, double lo, doub
 
 }  // namespace
 
-ShadowSweep::ShadowSweep(const std::vector<Vec3>& vertices, const std::vector<Triangle>& triangles)
-    : vertices_(vertices), previous_z_(std::numeric_limits<double>::infinity()) {
+SetupShadows::SetupShadows(std::vector<Vec3> vertices, const std::vector<Triangle>& triangles)
+    : vertices_(std::move(vertices)), part_top_(-std::numeric_limits<double>::infinity()) {
+  for (const Vec3& p : vertices_) part_top_ = std::max(part_top_, p.z());
   for (const Triangle& t : triangles) {
     const Vec3 &a = vertices_[t[0]], &b = vertices_[t[1]], &c = vertices_[t[2]];
-    // Every triangle that is not vertical: for a closed mesh the up-facing ones would do, but a triangle wound the
-    // wrong way (or a gap a repair left) must not open a hole in the shadow, and the down-facing ones lie under
-    // material above the level anyway.
-    const double nz = (b - a).cross(c - a).z();  // twice the projected area
-    if (nz != 0) up_.push_back(t);
+    if ((b - a).cross(c - a).z() != 0) up_.push_back(t);  // twice the projected area: vertical ones cast none
   }
   auto top = [&](const Triangle& t) {
     return std::max({vertices_[t[0]].z(), vertices_[t[1]].z(), vertices_[t[2]].z()});
@@ -94,47 +92,50 @@ ShadowSweep::ShadowSweep(const std::vector<Vec3>& vertices, const std::vector<Tr
   }
 }
 
-const Region& ShadowSweep::shadowAt(double z) {
-  if (z >= previous_z_) {
-    gain_.clear();
-    return shadow_;
-  }
-  while (next_ < up_.size() && top_[next_] >= z) active_.push_back(static_cast<int>(next_++));
-  const double hi = previous_z_;
+const SetupShadows::Kept& SetupShadows::keep(double z) {
+  const auto below = kept_.lower_bound(z);  // the first kept height at or below z
+  if (below != kept_.end() && below->first == z) return below->second;
+  const bool any_above = below != kept_.begin();
+  const double hi = any_above ? std::prev(below)->first : std::numeric_limits<double>::infinity();
+  Kept kept;
+  if (any_above) kept.shadow = std::prev(below)->second.shadow;
+  // The triangles reaching into [z, hi]: top at or above z (a prefix, highest top first), bottom at or below hi.
+  const std::size_t reaching = static_cast<std::size_t>(
+      std::upper_bound(top_.begin(), top_.end(), z, std::greater<double>()) - top_.begin());
   std::vector<Ring> pieces;
-  std::vector<int> still;
-  for (int i : active_) {
-    if (bottom_[i] > hi) continue;  // wholly above the previous level: projected already
+  for (std::size_t i = 0; i < reaching; ++i) {
+    if (bottom_[i] > hi) continue;  // wholly above the kept height: in its shadow already
     Ring piece = clipToSlab(vertices_, up_[i], z, hi);
     if (piece.size() >= 3) pieces.push_back(std::move(piece));
-    if (bottom_[i] < z) still.push_back(i);
   }
-  active_.swap(still);
-  slab_triangles_ += static_cast<int>(pieces.size());
-  gain_.clear();
   if (!pieces.empty()) {
-    gain_ = dropDegenerateRings(subtract(regionFromPolygons(pieces), shadow_));
-    if (!gain_.empty()) shadow_ = dropDegenerateRings(unite(shadow_, gain_));
-    gain_ = dropThinPieces(gain_, kThinGain);
+    kept.gain = dropDegenerateRings(subtract(regionFromPolygons(pieces), kept.shadow));
+    if (!kept.gain.empty()) kept.shadow = dropDegenerateRings(unite(kept.shadow, kept.gain));
+    kept.gain = dropThinPieces(kept.gain, kThinGain);
   }
-  previous_z_ = z;
-  return shadow_;
+  return kept_.emplace_hint(below, z, std::move(kept))->second;
+}
+
+ShadowStack SetupShadows::stack(std::vector<double> heights) {
+  std::sort(heights.begin(), heights.end(), std::greater<double>());
+  heights.erase(std::unique(heights.begin(), heights.end()), heights.end());
+  for (const double z : heights) keep(z);
+  ShadowStack stack;
+  stack.part_top_ = part_top_;
+  auto kept = kept_.begin();
+  for (const double z : heights) {
+    Region gain;
+    for (; kept != kept_.end() && kept->first >= z; ++kept) gain.insert(gain.end(), kept->second.gain.begin(), kept->second.gain.end());
+    stack.heights_.push_back(z);
+    stack.shadows_.push_back(std::prev(kept)->second.shadow);
+    stack.gains_.push_back(std::move(gain));
+  }
+  return stack;
 }
 
 ShadowStack::ShadowStack(const std::vector<Vec3>& vertices, const std::vector<Triangle>& triangles,
-                         std::vector<double> heights) {
-  part_top_ = -std::numeric_limits<double>::infinity();
-  for (const Vec3& p : vertices) part_top_ = std::max(part_top_, p.z());
-  std::sort(heights.begin(), heights.end(), std::greater<double>());
-  heights.erase(std::unique(heights.begin(), heights.end()), heights.end());
-  ShadowSweep sweep(vertices, triangles);
-  for (double z : heights) {
-    heights_.push_back(z);
-    shadows_.push_back(sweep.shadowAt(z));
-    gains_.push_back(sweep.lastGain());
-  }
-  slab_triangles_ = sweep.slabTriangles();
-}
+                         std::vector<double> heights)
+    : ShadowStack(SetupShadows(vertices, triangles).stack(std::move(heights))) {}
 
 int ShadowStack::indexAt(double z) const {
   if (z > part_top_) return -1;
