@@ -91,17 +91,32 @@ Region rasterRegion(const Raster& r, int grow) {
       if (last - j <= grow) grown[static_cast<std::size_t>(j) * nx + i] = 1;
     }
   }
+  // A row's runs, each a rectangle that grows down the rows while the same run recurs (the union has far fewer
+  // rectangles to merge: most of a slab's stock is blocks).
+  struct Run {
+    int i0, i1, j0;  // columns [i0, i1), first row
+  };
   std::vector<Ring> rects;
-  for (int j = 0; j < ny; ++j) {
-    const double y0 = r.y0 + (j - grow) * r.cell, y1 = y0 + r.cell;
-    for (int i = 0; i < nx;) {
+  const auto close = [&](const Run& run, int j1) {  // rows [j0, j1)
+    const double x0 = r.x0 + (run.i0 - grow) * r.cell, x1 = r.x0 + (run.i1 - grow) * r.cell;
+    const double y0 = r.y0 + (run.j0 - grow) * r.cell, y1 = r.y0 + (j1 - grow) * r.cell;
+    rects.push_back({Point2(x0, y0), Point2(x1, y0), Point2(x1, y1), Point2(x0, y1)});
+  };
+  std::vector<Run> open, next;  // the rectangles reaching the row above, by column
+  for (int j = 0; j <= ny; ++j) {
+    next.clear();
+    std::size_t o = 0;
+    for (int i = 0; j < ny && i < nx;) {
       if (!grown[static_cast<std::size_t>(j) * nx + i]) { ++i; continue; }
       int k = i;
       while (k < nx && grown[static_cast<std::size_t>(j) * nx + k]) ++k;
-      const double x0 = r.x0 + (i - grow) * r.cell, x1 = r.x0 + (k - grow) * r.cell;
-      rects.push_back({Point2(x0, y0), Point2(x1, y0), Point2(x1, y1), Point2(x0, y1)});
+      while (o < open.size() && open[o].i0 < i) close(open[o++], j);
+      if (o < open.size() && open[o].i0 == i && open[o].i1 == k) next.push_back(open[o++]);
+      else next.push_back({i, k, j});
       i = k;
     }
+    while (o < open.size()) close(open[o++], j);
+    open.swap(next);
   }
   return regionFromPolygons(rects);
 }

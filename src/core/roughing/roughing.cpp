@@ -189,6 +189,48 @@ const Region* beforeRemaining(const std::vector<SlabState>& before, double z, do
   return nullptr;
 }
 
+// What an operation's levels start from: the setup's block, what earlier setups left of it (their model's projections
+// per level: empty without one) and what the pass before left (a rest pass).
+struct LevelSources {
+  const SetupGeometry& g;
+  const InProcessStock* in_process;
+  const std::vector<SlabState>* before;
+  const std::vector<Region>& in_process_slabs;   // all that may be there
+  const std::vector<Region>& in_process_proven;  // what the model proves is there: to be cut
+  const std::vector<Region>& in_process_cuts;    // near the faces earlier setups cut: proven stock there may be film
+  double reach;  // how far centres may go from the target: the radius and kCentreBeyondStockMm (or the rest's)
+};
+
+// The slab [z, top] of level `index`: its stock and what the operation is to remove of it; `skin` is the part with
+// the allowance at z (unused by a first main pass).
+LevelTarget levelTarget(const LevelSources& from, std::size_t index, double z, double top, const Region& skin) {
+  LevelTarget t;
+  t.stock = stockSlabRegion(from.g.stock.vertices, from.g.stock.triangles, z, top);
+  if (from.in_process) t.stock = intersect(t.stock, from.in_process_slabs[index]);
+  if (from.before) {
+    const Region* left = beforeRemaining(*from.before, z, top);
+    t.stock = left ? intersect(t.stock, *left) : Region{};
+  }
+  // What this operation is to remove: all the stock (that earlier setups' model proves there, less what lies within
+  // its doubt of both the skin and a face they cut: the stairs and film they left round the part, which a pass would
+  // trace at every level for next to nothing), or for a rest pass what of it lies beyond the allowance. Shanks,
+  // holders and links keep clear of all of `stock`.
+  t.proven = from.in_process ? intersect(t.stock, from.in_process_proven[index]) : t.stock;
+  if (from.in_process && !regionEmpty(from.in_process_cuts[index])) {
+    t.doubtful =
+        intersect(t.proven, intersect(offsetRegion(skin, from.in_process->doubt()), from.in_process_cuts[index]));
+    if (from.before) t.doubtful = subtract(t.doubtful, skin);
+  }
+  t.target = subtract(t.proven, t.doubtful);
+  if (from.before) {
+    const Region beyond_skin = subtract(t.target, skin);
+    t.target = dropSlivers(offsetRegion(offsetRegion(beyond_skin, -kRestTargetOpeningMm), kRestTargetOpeningMm),
+                           kRestTargetSliverMm2);
+  }
+  t.reach = regionEmpty(t.target) ? Region{} : offsetRegion(t.target, from.reach);
+  return t;
+}
+
 void appendMoves(const std::vector<ClearingPoint>& moves, const SetupFrame& frame, const Tool& tool, int setup_index,
                  RoughingOperation& op) {
   for (const ClearingPoint& m : moves) {
@@ -339,32 +381,7 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
   // What each level is to remove (LevelTarget), worked out kTargetBlock levels at a time side by side; then level
   // after level its centres against the forbidden region, which grows with the stock each level leaves.
   std::vector<LevelTarget> targets(levels.size());
-  const auto levelTarget = [&](std::size_t index, double z, double slab_top, const Region& skin) {
-    LevelTarget t;
-    t.stock = stockSlabRegion(g.stock.vertices, g.stock.triangles, z, slab_top);
-    if (in_process) t.stock = intersect(t.stock, in_process_slabs[index]);
-    if (before) {
-      const Region* left = beforeRemaining(*before, z, slab_top);
-      t.stock = left ? intersect(t.stock, *left) : Region{};
-    }
-    // What this operation is to remove: all the stock (that earlier setups' model proves there, less what lies within
-    // its doubt of both the skin and a face they cut: the stairs and film they left round the part, which a pass
-    // would trace at every level for next to nothing), or for a rest pass what of it lies beyond the allowance.
-    // Shanks, holders and links keep clear of all of `stock`.
-    t.proven = in_process ? intersect(t.stock, in_process_proven[index]) : t.stock;
-    if (in_process && !regionEmpty(in_process_cuts[index])) {
-      t.doubtful = intersect(t.proven, intersect(offsetRegion(skin, in_process->doubt()), in_process_cuts[index]));
-      if (before) t.doubtful = subtract(t.doubtful, skin);
-    }
-    t.target = subtract(t.proven, t.doubtful);
-    if (before) {
-      const Region beyond_skin = subtract(t.target, skin);
-      t.target = dropSlivers(offsetRegion(offsetRegion(beyond_skin, -kRestTargetOpeningMm), kRestTargetOpeningMm),
-                             kRestTargetSliverMm2);
-    }
-    t.reach = regionEmpty(t.target) ? Region{} : offsetRegion(t.target, r + beyond);
-    return t;
-  };
+  const LevelSources sources{g, in_process, before, in_process_slabs, in_process_proven, in_process_cuts, r + beyond};
   for (RoughingLevel& level : levels) {
     const std::size_t index = &level - levels.data();
     if (!reportProgress(progress, "roughing", static_cast<double>(index) / levels.size(),
@@ -381,7 +398,7 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
         for (std::size_t j = 0; j < block; ++j) skins[j] = part_with_allowance.at(levels[index + j].z, {});
       parallelForRegions(static_cast<int>(block), [&](int j) {
         const std::size_t k = index + j;
-        targets[k] = levelTarget(k, levels[k].z, k == 0 ? g.stock_top : levels[k - 1].z, skins[j]);
+        targets[k] = levelTarget(sources, k, levels[k].z, k == 0 ? g.stock_top : levels[k - 1].z, skins[j]);
       });
     }
     const double z = level.z;
