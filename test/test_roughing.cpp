@@ -573,7 +573,9 @@ TEST(Roughing, AReachPassTakesWhatTheMainToolsHolderKeptItFrom) {
                                     [](const DroppedOperation& d) { return d.kind == "reach roughing"; });
   ASSERT_NE(dropped, slow.dropped.end());
   EXPECT_NE(dropped->reason.find("library rate"), std::string::npos) << dropped->reason;
-  std::printf("left out at a full-rate demand: %s\n", dropped->reason.c_str());
+  EXPECT_GT(dropped->plan_seconds, 0);  // the planning it cost, for nothing
+  std::printf("left out at a full-rate demand: %s (planned in %.2f s)\n", dropped->reason.c_str(),
+              dropped->plan_seconds);
 }
 
 // Stay-down links (issue 19): the same plan with links kept low (inside cleared material, over stock the slabs prove

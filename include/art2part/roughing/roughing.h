@@ -147,6 +147,7 @@ struct DroppedOperation {
   int setup = 0;
   std::string kind, tool;
   double planned_removal_mm3 = 0;  // what it was planned to remove, at most
+  double plan_seconds = 0;         // what planning it took (spent for nothing: what a faster rule would save)
   bool simulated = false;          // dropped by the simulation's figures: removed_mm3 and seconds hold
   double removed_mm3 = 0;          // what it removed in the simulation of the plan with it
   double seconds = 0;              // its estimated time, saved

@@ -185,7 +185,8 @@ nlohmann::json planJson(const Part& part, const PlanResult& plan, const Machine&
   j["dropped_operations"] = nlohmann::json::array();
   for (const DroppedOperation& d : plan.roughing.dropped) {
     nlohmann::json op = {{"setup", d.setup}, {"kind", d.kind}, {"tool", d.tool},
-                         {"planned_removal_mm3", d.planned_removal_mm3}, {"reason", d.reason}};
+                         {"planned_removal_mm3", d.planned_removal_mm3}, {"plan_seconds", d.plan_seconds},
+                         {"reason", d.reason}};
     if (d.simulated) {
       op["removed_mm3"] = d.removed_mm3;
       op["seconds"] = d.seconds;

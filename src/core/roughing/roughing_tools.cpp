@@ -77,6 +77,7 @@ DroppedOperation droppedOperation(const RoughingOperation& op, std::string reaso
   dropped.kind = op.kind;
   dropped.tool = op.tool;
   dropped.planned_removal_mm3 = op.planned_removal_mm3;
+  dropped.plan_seconds = op.plan_seconds;
   dropped.reason = std::move(reason);
   return dropped;
 }
