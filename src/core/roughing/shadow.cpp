@@ -125,7 +125,8 @@ ShadowStack SetupShadows::stack(std::vector<double> heights) {
   auto kept = kept_.begin();
   for (const double z : heights) {
     Region gain;
-    for (; kept != kept_.end() && kept->first >= z; ++kept) gain.insert(gain.end(), kept->second.gain.begin(), kept->second.gain.end());
+    for (; kept != kept_.end() && kept->first >= z; ++kept)
+      gain.insert(gain.end(), kept->second.gain.begin(), kept->second.gain.end());
     stack.heights_.push_back(z);
     stack.shadows_.push_back(std::prev(kept)->second.shadow);
     stack.gains_.push_back(std::move(gain));
