@@ -1,17 +1,19 @@
 // controller_bridge: toolpaths -> the machine's joint trajectory (the post stage) -> a controller.
 //   params:   ~machine (a config/machines/*.yaml path, required), ~rate (trajectory points per second, default 50),
 //             ~blend_tolerance (mm, default the post's 0.005), ~chordal_tolerance (mm, default the post's 0.005),
-//             ~controller_wait (s to wait for follow_joint_trajectory's server, default 2)
+//             ~controller_wait (s to wait for follow_joint_trajectory's server, default 2), ~joint_state_wait (s to
+//             wait for a joint_states sent after the request that shows the joints still, default 1)
 //   service:  run_program (RunToolpaths): reads FOLDER/toolpaths.csv and FOLDER/tools.json (a plan folder), places
 //             each setup's part on the machine (placeSetups: the fixtures FOLDER/plan.json records for this machine,
 //             else the search from its setup frames; no plan.json: the machine file's fixtures), checks the travel
 //             of every setup before anything runs (success=false naming each setup the machine cannot reach, and
 //             why), builds the machine program (buildMachineProgram, mode 3+2 | 5axis | auto), its waypoints and
 //             their time parameterization, samples it at the rate; publishes it and sends it to the controller. The
-//             trajectory starts where the controller's joint_states last put the joints (up to the safe height
-//             first, then to the program's start), else at the program's start. Bad input: success=false with the
-//             reason. One program at a time: a request while the last one is being built or is still running on the
-//             controller is refused with a reason (cancel it first: the follow_joint_trajectory action's cancel).
+//             trajectory starts where the controller's joint_states put the joints (the first after the request that
+//             shows them still; up to the safe height first, then to the program's start), else at the program's
+//             start. Bad input or joints still moving: success=false with the reason. One program at a time: a
+//             request while the last one is being built or is still running on the controller is refused with a
+//             reason (cancel it first: the follow_joint_trajectory action's cancel).
 //             With wait, a program cancelled or preempted on the controller answers success=false, error_code
 //             PREEMPTED (-6) and the controller's reason. FOLDER must lie under /art2part/output_root (cell_folders.h;
 //             relative: under it), rate 0 or 1..1000.
@@ -26,6 +28,8 @@
 #include <art2part/FollowJointTrajectoryAction.h>
 #include <art2part/RunToolpaths.h>
 
+#include <chrono>
+#include <condition_variable>
 #include <filesystem>
 #include <mutex>
 #include <optional>
@@ -52,6 +56,8 @@ class ControllerBridge {
     pnh.param("blend_tolerance", trajectory_options_.blend_tolerance, trajectory_options_.blend_tolerance);
     pnh.param("chordal_tolerance", post_options_.chordal_tolerance, post_options_.chordal_tolerance);
     pnh.param("controller_wait", controller_wait_, 2.0);
+    pnh.param("joint_state_wait", joint_state_wait_, 1.0);
+    if (!(joint_state_wait_ >= 0)) throw InputError("~joint_state_wait must be 0 or more");
     if (!(rate_ > 0) || !(trajectory_options_.blend_tolerance > 0) || !(post_options_.chordal_tolerance > 0))
       throw InputError("~rate, ~blend_tolerance and ~chordal_tolerance must be positive");
     trajectory_pub_ = nh.advertise<trajectory_msgs::JointTrajectory>("joint_trajectory", 1, true);
@@ -66,28 +72,46 @@ class ControllerBridge {
  private:
   void onJointState(const sensor_msgs::JointState::ConstPtr& msg) {
     if (msg->name.size() != msg->position.size()) return;
-    std::vector<double> joints(machine_.jointCount(), 0.0);
+    JointReading reading;
+    reading.joints.assign(machine_.jointCount(), 0.0);
     std::vector<bool> seen(machine_.jointCount(), false);
     for (std::size_t i = 0; i < msg->name.size(); ++i) {
       const int j = machineJointIndex(machine_, msg->name[i]);
       if (j < 0) continue;
-      joints[j] = fromRos(machine_.joints[j], msg->position[i]);
+      reading.joints[j] = fromRos(machine_.joints[j], msg->position[i]);
       seen[j] = true;
+      if (i < msg->velocity.size() && std::abs(msg->velocity[i]) > 1e-9) reading.still = false;
     }
     if (std::find(seen.begin(), seen.end(), false) != seen.end()) return;  // not all of this machine's joints
-    std::lock_guard<std::mutex> lock(state_mutex_);
-    current_ = joints;
+    reading.received = ros::Time::now();
+    {
+      std::lock_guard<std::mutex> lock(state_mutex_);
+      current_ = std::move(reading);
+    }
+    state_changed_.notify_all();
+  }
+
+  // Where the joints are for a program asked for at `asked`: the first joint_states received after it that shows
+  // them still (a state sent before a cancelled goal stopped is stale by up to one period), waiting up to
+  // ~joint_state_wait. Nothing when no joint_states ever came (the trajectory then starts at the program's start);
+  // the last known state when none came since (a controller that stopped publishing). Throws InputError when the
+  // joints are still moving after the wait.
+  std::optional<std::vector<double>> jointsAfter(const ros::Time& asked) {
+    std::unique_lock<std::mutex> lock(state_mutex_);
+    if (!current_) return std::nullopt;
+    const auto fresh_and_still = [&] { return current_->received > asked && current_->still; };
+    state_changed_.wait_for(lock, std::chrono::duration<double>(joint_state_wait_), fresh_and_still);
+    if (current_->received > asked && !current_->still)
+      throw InputError("the joints are still moving " + std::to_string(joint_state_wait_) +
+                       " s after the request; wait until the controller has stopped them");
+    return current_->joints;
   }
 
   // The machine's waypoints: from where the joints are (if known and elsewhere) up to the safe height, to the
   // program's start, then the program.
-  std::vector<JointWaypoint> waypointsFrom(const MachineProgram& program) {
+  std::vector<JointWaypoint> waypointsFrom(const MachineProgram& program,
+                                           const std::optional<std::vector<double>>& current) {
     std::vector<JointWaypoint> waypoints = programWaypoints(program);
-    std::optional<std::vector<double>> current;
-    {
-      std::lock_guard<std::mutex> lock(state_mutex_);
-      current = current_;
-    }
     if (!current || waypoints.empty()) return waypoints;
     const std::vector<double> start = jointVector(machine_, waypoints.front().joints);
     double gap = 0;
@@ -146,6 +170,7 @@ class ControllerBridge {
   }
 
   bool runProgramUnrecorded(RunToolpaths::Request& req, RunToolpaths::Response& res) {
+    const ros::Time asked = ros::Time::now();
     const Claim claim(*this);  // one program at a time
     try {
       if (!claim.busy().empty()) throw InputError(claim.busy());
@@ -172,7 +197,7 @@ class ControllerBridge {
       std::string name = fs::path(req.folder).lexically_normal().filename().string();
       if (name.empty()) name = fs::path(req.folder).lexically_normal().parent_path().filename().string();
       const MachineProgram program = buildMachineProgram(machine_, path, tools, name.empty() ? "part" : name, options);
-      const JointTrajectory trajectory = parameterizeTrajectory(machine_, waypointsFrom(program), trajectory_options_);
+      const JointTrajectory trajectory = parameterizeTrajectory(machine_, waypointsFrom(program, jointsAfter(asked)), trajectory_options_);
       trajectory_msgs::JointTrajectory msg = jointTrajectoryMessage(machine_, trajectory, rate);
       msg.header.stamp = ros::Time(0);  // start when the controller gets it
       trajectory_pub_.publish(msg);
@@ -230,19 +255,27 @@ class ControllerBridge {
   const CellFolders folders_ = readCellFolders(false);
   NodeDiagnostics diagnostics_;
   Machine machine_;
-  double rate_ = 50, controller_wait_ = 2;
+  double rate_ = 50, controller_wait_ = 2, joint_state_wait_ = 1;
   PostOptions post_options_;
   TrajectoryOptions trajectory_options_;
   TrajectoryClient client_;
   ros::Publisher trajectory_pub_;
   ros::Subscriber state_sub_;
   ros::ServiceServer service_;
+  // The last joint_states of all this machine's joints: where they were (core units, machine joint order), whether
+  // every velocity given was zero, and when it arrived.
+  struct JointReading {
+    std::vector<double> joints;
+    bool still = true;
+    ros::Time received;
+  };
   std::mutex state_mutex_;
+  std::condition_variable state_changed_;  // a new current_
   std::mutex run_mutex_;      // guards building_, goal_sent_, running_name_ and the client's goal
   bool building_ = false;     // a run_program is between its claim and its answer
   bool goal_sent_ = false;    // the client has had a goal (its state is defined)
   std::string running_name_;  // the program of the last goal sent
-  std::optional<std::vector<double>> current_;  // core units, machine joint order
+  std::optional<JointReading> current_;
 };
 
 }  // namespace art2part
