@@ -163,7 +163,7 @@ TEST_F(BadRequests, PartPathsOutsideThePartFolders) {
   EXPECT_REFUSED(shadow, kOutsideParts);
   EXPECT_REFUSED(missing, kOutsideParts);
   EXPECT_EQ(without(shadow.message, "/etc/shadow"), without(missing.message, "/etc/no-such-part-" + kPid + ".stl"));
-  for (const std::string& leak : {"mesh", "exist", "No such", "cannot", "permission", "read"})
+  for (const char* leak : {"mesh", "exist", "No such", "cannot", "permission", "read"})
     EXPECT_EQ(shadow.message.find(leak), std::string::npos) << shadow.message;
 
   // `..` out of a part folder, absolute and relative; a file beside the folders; a link from inside to outside.

@@ -168,7 +168,9 @@ TEST(FinishingPlannerNode, FinishesEveryFaceOrSaysWhy) {
     const FaceFinishing& f = r.faces[i];
     EXPECT_EQ(f.face, static_cast<int>(i));
     EXPECT_TRUE(f.status == "finished" || f.status == "partial" || f.status == "unmachinable") << f.status;
-    if (f.status != "finished") EXPECT_FALSE(f.reason.empty()) << "face " << i << " " << f.status << " without a reason";
+    if (f.status != "finished") {
+      EXPECT_FALSE(f.reason.empty()) << "face " << i << " " << f.status << " without a reason";
+    }
     if (f.status == "finished") {
       ++finished;
       EXPECT_FALSE(f.operations.empty()) << "face " << i;
