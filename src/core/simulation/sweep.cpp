@@ -24,6 +24,7 @@ const char* collisionKindName(CollisionKind kind) {
 namespace {
 
 constexpr int kRowBlock = 4;       // rows per block handed out to the threads in turn
+constexpr int kTileColumns = 16;   // a tile: kTileColumns rays of kRowBlock rows, all of one thread's
 constexpr int kGougeSamples = 8;   // points measured between the ends of a long removed span
 constexpr double kInfinity = 1e300;
 
@@ -86,8 +87,50 @@ double cuspStep(const ToolSolid& tool, double tolerance) {
   return rho > 0 ? std::sqrt(4.0 * rho * std::max(tolerance, 1e-4)) : kInfinity;
 }
 
+// Where material may lie along the rays of each tile of a family: the union of its rays' extents, recomputed when
+// one of them has changed since (a pose's box rejects a whole tile on it, most of the tool, shank and holder in air).
+// A worker keeps its own and reads only the tiles of its rows.
+class TileExtents {
+ public:
+  TileExtents(const DexelLattice& lattice, const Extents& extents) : lattice_(lattice), extents_(extents) {
+    for (int axis = 0; axis < 3; ++axis) {
+      columns_[axis] = (lattice.cells[DexelLattice::uAxis(axis)] + kTileColumns - 1) / kTileColumns;
+      const int rows = (lattice.cells[DexelLattice::vAxis(axis)] + kRowBlock - 1) / kRowBlock;
+      tiles_[axis].assign(static_cast<std::size_t>(columns_[axis]) * rows, Span{});
+      stale_[axis].assign(tiles_[axis].size(), 1);
+    }
+  }
+
+  int tileOf(int axis, int iu, int iv) const { return iu / kTileColumns + columns_[axis] * (iv / kRowBlock); }
+  void changed(int axis, int tile) { stale_[axis][tile] = 1; }
+
+  Span extent(int axis, int tile_u, int tile_v) {
+    const int tile = tile_u + columns_[axis] * tile_v;
+    if (stale_[axis][tile]) {
+      Span e{kInfinity, -kInfinity};
+      const int nu = lattice_.cells[DexelLattice::uAxis(axis)], nv = lattice_.cells[DexelLattice::vAxis(axis)];
+      for (int iv = tile_v * kRowBlock; iv < std::min(nv, (tile_v + 1) * kRowBlock); ++iv)
+        for (int iu = tile_u * kTileColumns; iu < std::min(nu, (tile_u + 1) * kTileColumns); ++iu) {
+          const Span& ray = extents_[axis][lattice_.rayIndex(axis, iu, iv)];
+          e.lo = std::min(e.lo, ray.lo);
+          e.hi = std::max(e.hi, ray.hi);
+        }
+      tiles_[axis][tile] = e;
+      stale_[axis][tile] = 0;
+    }
+    return tiles_[axis][tile];
+  }
+
+ private:
+  const DexelLattice& lattice_;
+  const Extents& extents_;
+  std::array<int, 3> columns_{};
+  std::array<std::vector<Span>, 3> tiles_;
+  std::array<std::vector<std::uint8_t>, 3> stale_;
+};
+
 struct Ray {
-  int axis, index;
+  int axis, index, tile;
   double u, v;  // its two lattice coordinates
 
   Vec3 origin() const {  // 0 along it
@@ -110,8 +153,8 @@ class Worker {
  public:
   Worker(Stock& stock, Extents& extents, const MeshDexels& part, const Extents& part_extents,
          const PartDistance& distance, const SweepOptions& options, int thread, int threads)
-      : stock_(stock), extents_(extents), part_(part), part_extents_(part_extents), distance_(distance),
-        options_(options), thread_(thread), threads_(threads) {}
+      : stock_(stock), extents_(extents), tiles_(stock.lattice, extents), part_(part), part_extents_(part_extents),
+        distance_(distance), options_(options), thread_(thread), threads_(threads) {}
 
   // Every run of the path over this worker's rows; after each, the rows done go to `rows_done` and a raised `stop`
   // ends it (both may be null).
@@ -217,16 +260,34 @@ class Worker {
     if (!box.empty()) cutFamily(piece, pose, rapid, axis, box);
   }
 
+  // The piece's rays of this family within `box`, a tile at a time: a tile whose material lies beyond the box along
+  // the rays is passed over whole.
   void cutFamily(const ToolPiece& piece, const SweepPose& pose, bool rapid, int axis, const Box& box) {
     const DexelLattice& lattice = stock_.lattice;
     const int u = DexelLattice::uAxis(axis), v = DexelLattice::vAxis(axis);
     const auto us = lattice.indexRange(u, box.min[u], box.max[u]);
     const auto vs = lattice.indexRange(v, box.min[v], box.max[v]);
     const PieceOnRays on_rays(piece, pose.pose, axis);
-    for (int iv = vs[0]; iv <= vs[1]; ++iv) {
-      if (!owns(iv)) continue;
+    for (int tile_v = vs[0] / kRowBlock; tile_v <= vs[1] / kRowBlock; ++tile_v) {
+      if (!owns(tile_v * kRowBlock)) continue;
+      const std::array<int, 2> rows{std::max(vs[0], tile_v * kRowBlock), std::min(vs[1], (tile_v + 1) * kRowBlock - 1)};
+      for (int tile_u = us[0] / kTileColumns; tile_u <= us[1] / kTileColumns; ++tile_u) {
+        const Span tile = tiles_.extent(axis, tile_u, tile_v);
+        if (tile.lo > box.max[axis] || tile.hi < box.min[axis]) continue;
+        const std::array<int, 2> columns{std::max(us[0], tile_u * kTileColumns),
+                                         std::min(us[1], (tile_u + 1) * kTileColumns - 1)};
+        cutRays(piece, on_rays, pose, rapid, axis, box, columns, rows);
+      }
+    }
+  }
+
+  void cutRays(const ToolPiece& piece, const PieceOnRays& on_rays, const SweepPose& pose, bool rapid, int axis,
+               const Box& box, std::array<int, 2> columns, std::array<int, 2> rows) {
+    const DexelLattice& lattice = stock_.lattice;
+    const int u = DexelLattice::uAxis(axis), v = DexelLattice::vAxis(axis);
+    for (int iv = rows[0]; iv <= rows[1]; ++iv) {
       const double cv = lattice.coordinate(v, iv);
-      for (int iu = us[0]; iu <= us[1]; ++iu) {
+      for (int iu = columns[0]; iu <= columns[1]; ++iu) {
         const int ray = lattice.rayIndex(axis, iu, iv);
         const Span material = extents_[axis][ray];
         if (material.lo > box.max[axis] || material.hi < box.min[axis]) continue;
@@ -235,7 +296,7 @@ class Worker {
         if (!on_rays.span(cu, cv, span)) continue;
         const Span swept{span.lo - std::max(pose.slide, 0.0), span.hi - std::min(pose.slide, 0.0)};
         if (swept.hi <= material.lo || swept.lo >= material.hi) continue;
-        const Ray r{axis, ray, cu, cv};
+        const Ray r{axis, ray, tiles_.tileOf(axis, iu, iv), cu, cv};
         if (piece.zone != ToolZone::Flutes || rapid) checkCollision(piece, pose, rapid, r, span, swept);
         if (piece.zone == ToolZone::Flutes) cut(pose, r, span, swept);
       }
@@ -272,6 +333,7 @@ class Worker {
     for (const Span& removed : removed_) (*removed_here_)[r.axis] += removed.length();
     if (level_cut_) measureLevelCut(r);
     extents_[r.axis][r.index] = extentOf(spans);
+    tiles_.changed(r.axis, r.tile);
     const Span part = part_extents_[r.axis][r.index];
     if (removed_.front().lo >= part.hi || removed_.back().hi <= part.lo) return;
     for (const Span& removed : removed_)
@@ -332,6 +394,7 @@ class Worker {
 
   Stock& stock_;
   Extents& extents_;
+  TileExtents tiles_;  // of extents_, for this worker's rows
   const MeshDexels& part_;
   const Extents& part_extents_;
   const PartDistance& distance_;
