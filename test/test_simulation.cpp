@@ -132,6 +132,27 @@ TEST(Simulation, FlatSlotRemovesTheAnalyticVolume) {
   EXPECT_EQ(r.collisions, 0);
 }
 
+// The sweep passes over rays where a piece lies in air between two spans of material (the widest gap of each ray):
+// a pass down a slot already cut removes nothing, one 1 mm aside removes just the strip it widens by, on the rays
+// across the slot (two walls each) as on the others.
+TEST(Simulation, PassesInsideACutSlotRemoveOnlyWhatTheyWiden) {
+  Toolpath path;
+  const Vec3 offsets[] = {Vec3(0, 0, 0), Vec3(0, 0, 0), Vec3(0, 1, 0)};
+  for (int op = 0; op < 3; ++op)
+    for (CutterLocation c : pass("flat6", Vec3(5, 10, 12) + offsets[op], Vec3(35, 10, 12) + offsets[op])) {
+      c.op = op;
+      path.push_back(c);
+    }
+  const auto r = verify(path, kFlat, options(0.2, 5));
+  const double slot = 30 * 6 * 3 + kPi * 9 * 3;
+  const double strip = 1.0 * (30 + 6) * 3;  // the slot's outline (36 mm across x) moved 1 mm along y, 3 mm deep
+  EXPECT_NEAR(r.by_op.at(0).swept.removed_mm3, slot, 0.01 * slot);
+  EXPECT_LT(r.by_op.at(1).swept.removed_mm3, 0.5);
+  EXPECT_NEAR(r.by_op.at(2).swept.removed_mm3, strip, 0.03 * strip);
+  EXPECT_EQ(r.gouges, 0);
+  EXPECT_EQ(r.collisions, 0);
+}
+
 TEST(Simulation, BallSlotRemovesTheAnalyticVolume) {
   // Ball centre on the stock's top face: the lower half of a capsule, half a cylinder and half a sphere.
   const auto r = verify(pass("ball6", Vec3(5, 10, 12), Vec3(35, 10, 12)), kBall, options(0.2, 5));

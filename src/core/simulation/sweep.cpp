@@ -36,10 +36,28 @@ Span extentOf(const SpanList& spans) {
   return spans.empty() ? Span{kInfinity, -kInfinity} : Span{spans.front().lo, spans.back().hi};
 }
 
+// The widest stretch of air between two spans of material along a ray (empty, lo >= hi, when there is none): a piece
+// whose span lies inside it cuts nothing there, the usual case for the flutes of a finishing tool over a pocket.
+Span widestGap(const SpanList& spans) {
+  Span gap{0, 0};
+  for (std::size_t i = 1; i < spans.size(); ++i)
+    if (spans[i].lo - spans[i - 1].hi > gap.length()) gap = {spans[i - 1].hi, spans[i].lo};
+  return gap;
+}
+
+bool inside(const Span& a, const Span& b) { return a.lo >= b.lo && a.hi <= b.hi; }
+
 Extents stockExtents(const Stock& stock) {
   Extents e;
   for (int axis = 0; axis < 3; ++axis)
     for (const SpanList& spans : stock.dexels[axis]) e[axis].push_back(extentOf(spans));
+  return e;
+}
+
+Extents stockGaps(const Stock& stock) {
+  Extents e;
+  for (int axis = 0; axis < 3; ++axis)
+    for (const SpanList& spans : stock.dexels[axis]) e[axis].push_back(widestGap(spans));
   return e;
 }
 
@@ -151,9 +169,9 @@ struct LevelCut {
 // One thread's share of the sweep: the rows it owns in every family.
 class Worker {
  public:
-  Worker(Stock& stock, Extents& extents, const MeshDexels& part, const Extents& part_extents,
+  Worker(Stock& stock, Extents& extents, Extents& gaps, const MeshDexels& part, const Extents& part_extents,
          const PartDistance& distance, const SweepOptions& options, int thread, int threads)
-      : stock_(stock), extents_(extents), tiles_(stock.lattice, extents), part_(part), part_extents_(part_extents),
+      : stock_(stock), extents_(extents), gaps_(gaps), tiles_(stock.lattice, extents), part_(part), part_extents_(part_extents),
         distance_(distance), options_(options), thread_(thread), threads_(threads) {}
 
   // Every run of the path over this worker's rows; after each, the rows done go to `rows_done` and a raised `stop`
@@ -291,11 +309,12 @@ class Worker {
         const int ray = lattice.rayIndex(axis, iu, iv);
         const Span material = extents_[axis][ray];
         if (material.lo > box.max[axis] || material.hi < box.min[axis]) continue;
+        if (inside(Span{box.min[axis], box.max[axis]}, gaps_[axis][ray])) continue;
         const double cu = lattice.coordinate(u, iu);
         Span span;
         if (!on_rays.span(cu, cv, span)) continue;
         const Span swept{span.lo - std::max(pose.slide, 0.0), span.hi - std::min(pose.slide, 0.0)};
-        if (swept.hi <= material.lo || swept.lo >= material.hi) continue;
+        if (swept.hi <= material.lo || swept.lo >= material.hi || inside(swept, gaps_[axis][ray])) continue;
         const Ray r{axis, ray, tiles_.tileOf(axis, iu, iv), cu, cv};
         if (piece.zone != ToolZone::Flutes || rapid) checkCollision(piece, pose, rapid, r, span, swept);
         if (piece.zone == ToolZone::Flutes) cut(pose, r, span, swept);
@@ -333,6 +352,7 @@ class Worker {
     for (const Span& removed : removed_) (*removed_here_)[r.axis] += removed.length();
     if (level_cut_) measureLevelCut(r);
     extents_[r.axis][r.index] = extentOf(spans);
+    gaps_[r.axis][r.index] = widestGap(spans);
     tiles_.changed(r.axis, r.tile);
     const Span part = part_extents_[r.axis][r.index];
     if (removed_.front().lo >= part.hi || removed_.back().hi <= part.lo) return;
@@ -394,6 +414,7 @@ class Worker {
 
   Stock& stock_;
   Extents& extents_;
+  Extents& gaps_;      // widestGap of every ray
   TileExtents tiles_;  // of extents_, for this worker's rows
   const MeshDexels& part_;
   const Extents& part_extents_;
@@ -472,11 +493,11 @@ SweepResult sweepToolpath(Stock& stock, const MeshDexels& part, const PartDistan
   const std::vector<const ToolSolid*> row_tools = toolOfEveryRow(path, tools);
   const int threads = options.threads > 0 ? options.threads
                                           : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-  Extents extents = stockExtents(stock);
+  Extents extents = stockExtents(stock), gaps = stockGaps(stock);
   const Extents part_extents = solidExtents(part);
   std::vector<Worker> workers;
   for (int t = 0; t < threads; ++t)
-    workers.emplace_back(stock, extents, part, part_extents, part_distance, options, t, threads);
+    workers.emplace_back(stock, extents, gaps, part, part_extents, part_distance, options, t, threads);
   SweepResult result;
   if (progress) {
     result.cancelled = runReporting(workers, path, row_tools, progress);
