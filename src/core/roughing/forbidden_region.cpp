@@ -80,9 +80,12 @@ const Region& ForbiddenRegion::at(double z, const std::vector<StockLeft>& left_a
   // Pieces gained at neighbouring heights touch: merged first, their offsets would overlap and the union of
   // overlapping offsets is what costs. Then simplified and offset with chords as coarse as the layer allows, both
   // paid for by a larger radius (the region only grows: never a collision for an approximation), as are the slivers
-  // the gains leave out. The layers side by side.
-  parallelForRegions(static_cast<int>(layers_.size()), [&](int i) {
-    if (fresh[i].empty()) return;
+  // the gains leave out. The layers with new pieces side by side (threads only when there are two or more).
+  std::vector<int> grown_layers;
+  for (std::size_t i = 0; i < layers_.size(); ++i)
+    if (!fresh[i].empty()) grown_layers.push_back(static_cast<int>(i));
+  parallelForRegions(static_cast<int>(grown_layers.size()), [&](int k) {
+    const int i = grown_layers[k];
     const Layer& layer = layers_[i];
     fresh[i] = offsetRegion(simplifyRegion(unite(fresh[i], {}), layer.tolerance),
                             layer.radius + 2 * layer.tolerance + 2 * kThinGain, layer.tolerance);
