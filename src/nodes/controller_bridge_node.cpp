@@ -197,7 +197,8 @@ class ControllerBridge {
       std::string name = fs::path(req.folder).lexically_normal().filename().string();
       if (name.empty()) name = fs::path(req.folder).lexically_normal().parent_path().filename().string();
       const MachineProgram program = buildMachineProgram(machine_, path, tools, name.empty() ? "part" : name, options);
-      const JointTrajectory trajectory = parameterizeTrajectory(machine_, waypointsFrom(program, jointsAfter(asked)), trajectory_options_);
+      const JointTrajectory trajectory =
+          parameterizeTrajectory(machine_, waypointsFrom(program, jointsAfter(asked)), trajectory_options_);
       trajectory_msgs::JointTrajectory msg = jointTrajectoryMessage(machine_, trajectory, rate);
       msg.header.stamp = ros::Time(0);  // start when the controller gets it
       trajectory_pub_.publish(msg);

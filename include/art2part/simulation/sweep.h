@@ -25,12 +25,13 @@
 // At each pose every piece of the tool meets only the rays inside its bounding box (clipped to the stock), each ray
 // analytically (tool_solid.h). Rays where the piece cannot meet material are passed over without changing anything:
 // a tile of rays whose material all lies beyond the box along them, a ray whose material does, or whose widest stretch
-// of air between two spans holds the box's range or the piece's swept span (a finishing tool's flutes over a pocket). Flutes remove material; material of the part they remove is a gouge, its depth the
-// exact distance from the deepest removed point to the part's surface (the ends of each removed span inside the part,
-// and up to 8 points between: a 0.05 mm dip reads 0.05 whatever the ray direction), deeper than the tolerance to
-// count. The shank or the holder in remaining material, or any part of the tool in material during a rapid move, is
-// a collision, its depth how far the material reaches into that piece of the tool (deeper than the tolerance to
-// count). Material the tool meets during a rapid is removed too, so one crash is reported once, not by every later move.
+// of air between two spans holds the box's range or the piece's swept span (a finishing tool's flutes over a pocket).
+// Flutes remove material; material of the part they remove is a gouge, its depth the exact distance from the deepest
+// removed point to the part's surface (the ends of each removed span inside the part, and up to 8 points between: a
+// 0.05 mm dip reads 0.05 whatever the ray direction), deeper than the tolerance to count. The shank or the holder in
+// remaining material, or any part of the tool in material during a rapid move, is a collision, its depth how far the
+// material reaches into that piece of the tool (deeper than the tolerance to count). Material the tool meets during a
+// rapid is removed too, so one crash is reported once, not by every later move.
 // A move is swept only when it continues the previous row's tool and setup; otherwise the tool is placed at its point
 // (a tool change or a new setup is no motion through the part frame).
 //

@@ -171,8 +171,8 @@ class Worker {
  public:
   Worker(Stock& stock, Extents& extents, Extents& gaps, const MeshDexels& part, const Extents& part_extents,
          const PartDistance& distance, const SweepOptions& options, int thread, int threads)
-      : stock_(stock), extents_(extents), gaps_(gaps), tiles_(stock.lattice, extents), part_(part), part_extents_(part_extents),
-        distance_(distance), options_(options), thread_(thread), threads_(threads) {}
+      : stock_(stock), extents_(extents), gaps_(gaps), tiles_(stock.lattice, extents), part_(part),
+        part_extents_(part_extents), distance_(distance), options_(options), thread_(thread), threads_(threads) {}
 
   // Every run of the path over this worker's rows; after each, the rows done go to `rows_done` and a raised `stop`
   // ends it (both may be null).
@@ -288,7 +288,8 @@ class Worker {
     const PieceOnRays on_rays(piece, pose.pose, axis);
     for (int tile_v = vs[0] / kRowBlock; tile_v <= vs[1] / kRowBlock; ++tile_v) {
       if (!owns(tile_v * kRowBlock)) continue;
-      const std::array<int, 2> rows{std::max(vs[0], tile_v * kRowBlock), std::min(vs[1], (tile_v + 1) * kRowBlock - 1)};
+      const std::array<int, 2> rows{std::max(vs[0], tile_v * kRowBlock),
+                                    std::min(vs[1], (tile_v + 1) * kRowBlock - 1)};
       for (int tile_u = us[0] / kTileColumns; tile_u <= us[1] / kTileColumns; ++tile_u) {
         const Span tile = tiles_.extent(axis, tile_u, tile_v);
         if (tile.lo > box.max[axis] || tile.hi < box.min[axis]) continue;
