@@ -138,6 +138,29 @@ TEST(Cli, IllFormedNumbersAreUsageMistakes) {
 
 // `art2part COMMAND --help` is a request, not a mistake: that command's usage alone on stdout, exit 0, and nothing run
 // (a --help among a plan's arguments must not start a plan).
+// A machine whose travel the part exceeds: the plan is written, the program is not, and the output says so (the
+// wrote line once listed program.ngc all the same: CTC-02 on the default VMC).
+TEST(Cli, PlanOnAMachineTooSmallWritesNoProgramAndSaysSo) {
+  const std::string dir = test::tempDir();
+  std::ifstream vmc(std::string(ART2PART_SOURCE_DIR) + "/config/machines/vmc_3axis.yaml");
+  std::string yaml(std::istreambuf_iterator<char>(vmc), {});
+  const std::size_t z = yaml.find("max: 1200");
+  ASSERT_NE(z, std::string::npos);
+  yaml.replace(z, 9, "max: 20");  // 20 mm of Z travel
+  std::ofstream(dir + "/small.yaml") << yaml;
+  const CliRun plan = run("plan " + std::string(ART2PART_SHARED_PARTS) + "/featuretype.STEP --out " + dir +
+                          "/plan --no-finish --machine " + dir + "/small.yaml");
+  EXPECT_EQ(plan.status, 0) << plan.err;
+  EXPECT_NE(plan.err.find("no program for"), std::string::npos) << plan.err;
+  const std::size_t wrote = plan.out.find("wrote:");
+  ASSERT_NE(wrote, std::string::npos) << plan.out;
+  EXPECT_EQ(plan.out.find("program.ngc", wrote), std::string::npos) << plan.out.substr(wrote);
+  EXPECT_FALSE(std::filesystem::exists(dir + "/plan/program.ngc"));
+  std::ifstream in(dir + "/plan/plan.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_FALSE(j["program"]["written"].get<bool>());
+}
+
 TEST(Cli, CommandHelpPrintsItsUsageAndExitsZero) {
   for (const char* command : {"info", "render", "visibility", "setups", "plan", "verify", "post", "urdf"}) {
     SCOPED_TRACE(command);

@@ -134,8 +134,9 @@ int runPlan(const std::vector<std::string>& args) {
               << static_cast<long>(report.leftover_volume_mm3) << " mm3 left beyond the tolerance\n"
               << "              " << j["verification"]["what_is_left"].get<std::string>() << "\n";
   }
-  std::cout << "wrote:        " << out << "/{plan.json,toolpaths.csv,tools.json,mesh.stl,program.ngc,setups.png,"
-            << "remaining.png,directions.csv,visibility.bits}\n";
+  std::cout << "wrote:        " << out << "/{plan.json,toolpaths.csv,tools.json,mesh.stl,"
+            << (written.program_written ? "program.ngc," : "") << "setups.png,remaining.png,directions.csv,"
+            << "visibility.bits}\n";
   // A plan the simulation rejects is still written (plan.json says passed: false, and why); the exit status is for
   // errors in the input. `art2part verify DIR` exits 1 on any gouge or collision.
   return 0;
