@@ -136,8 +136,6 @@ TEST(Cli, IllFormedNumbersAreUsageMistakes) {
   EXPECT_EQ(run(visibility + " --threads 2 --level 1").status, 1);
 }
 
-// `art2part COMMAND --help` is a request, not a mistake: that command's usage alone on stdout, exit 0, and nothing run
-// (a --help among a plan's arguments must not start a plan).
 // A machine whose travel the part exceeds: the plan is written, the program is not, and the output says so (the
 // wrote line once listed program.ngc all the same: CTC-02 on the default VMC).
 TEST(Cli, PlanOnAMachineTooSmallWritesNoProgramAndSaysSo) {
@@ -161,6 +159,8 @@ TEST(Cli, PlanOnAMachineTooSmallWritesNoProgramAndSaysSo) {
   EXPECT_FALSE(j["program"]["written"].get<bool>());
 }
 
+// `art2part COMMAND --help` is a request, not a mistake: that command's usage alone on stdout, exit 0, and nothing run
+// (a --help among a plan's arguments must not start a plan).
 TEST(Cli, CommandHelpPrintsItsUsageAndExitsZero) {
   for (const char* command : {"info", "render", "visibility", "setups", "plan", "verify", "post", "urdf"}) {
     SCOPED_TRACE(command);
