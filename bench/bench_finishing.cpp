@@ -11,7 +11,8 @@
 //   holes                   holes a library drill matches, and how many are drilled
 //   tool loads              the most times one tool is loaded within one setup's finishing (1 is the figure)
 //   time                    planning seconds per stage; machining estimate (roughing, finishing, tool changes)
-//   bench_finishing [PART ...] [--level L] [--windows N]   (file names in shared/parts; default: all of them)
+//   bench_finishing [PART ...] [--level L] [--windows N] [--threads T]   (file names in shared/parts; default: all of
+//   them; T: finishing's groups side by side, 0 = the hardware's)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -21,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "art2part/common/parallel.h"
 #include "art2part/finishing/surface_finishing.h"
 #include "art2part/plan/plan_part.h"
 #include "art2part/simulation/scallop_probe.h"
@@ -32,7 +34,8 @@ using namespace art2part;
 namespace {
 
 const char* const kUsage =
-    "bench_finishing [PART ...] [--level L] [--windows N]   (file names in shared/parts; default: all of them)\n";
+    "bench_finishing [PART ...] [--level L] [--windows N] [--threads T]   (file names in shared/parts; default: all of "
+    "them)\n";
 const std::string kParts = ART2PART_SHARED_PARTS;
 const std::string kTools = std::string(ART2PART_SOURCE_DIR) + "/config/tools.yaml";
 const char* kAll[] = {"featuretype.STEP", "ANC101.stp", "nist_ctc_01_asme1_rd.stp", "nist_ctc_02_asme1_rc.stp",
@@ -72,13 +75,14 @@ std::vector<int> facesOf(const FinishingPlan& plan, const std::set<FinishingKind
   return {faces.begin(), faces.end()};
 }
 
-void bench(const std::string& name, int level, int windows) {
+void bench(const std::string& name, int level, int windows, int threads) {
   const ToolLibrary library = loadToolLibrary(kTools);
   auto start = std::chrono::steady_clock::now();
   const Part part = loadPart(kParts + "/" + name, loadOptionsFor(name));
   const double load = secondsSince(start);
   PlanOptions options;
   options.visibility.level = level;
+  options.finishing.threads = threads;
   const PlanResult plan = planPart(part, library, options);
   std::map<std::string, double> t(plan.timings.begin(), plan.timings.end());
   int added = 0;
@@ -161,16 +165,18 @@ void bench(const std::string& name, int level, int windows) {
 }
 
 int benchMain(const std::vector<std::string>& args) {
-  const Arguments a(args, {}, {"level", "windows"});
+  const Arguments a(args, {}, {"level", "windows", "threads"});
   const int level = atLeast(a.integer("level", 4), 0, "--level");
   const int windows = atLeast(a.integer("windows", 400), 0, "--windows");
+  const int threads = atLeast(a.integer("threads", 0), 0, "--threads");
   std::vector<std::string> parts = a.positional();
   if (parts.empty()) parts.assign(std::begin(kAll), std::end(kAll));
   for (const std::string& name : parts) requireFile(kParts + "/" + name);
-  std::printf("bench_finishing: whole plans at visibility level %d (issue 17's figures)\n", level);
+  std::printf("bench_finishing: whole plans at visibility level %d (issue 17's figures), finishing on %d threads\n",
+              level, threadCount(threads));
   for (const std::string& name : parts) {
     try {
-      bench(name, level, windows);
+      bench(name, level, windows, threads);
     } catch (const std::exception& e) {  // one part's failure is its line of the report; the others still run
       std::printf("\n== %s: %s\n", name.c_str(), e.what());
     }

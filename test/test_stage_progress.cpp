@@ -3,9 +3,13 @@
 // call returns within a second, flagged cancelled, without throwing.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <random>
+#include <stdexcept>
+#include <thread>
 
+#include "art2part/common/parallel.h"
 #include "art2part/geometry/part.h"
 #include "art2part/plan/plan_part.h"
 #include "art2part/setup/minimum_cover.h"
@@ -218,6 +222,117 @@ TEST(VerificationProgress, StopsWithinASecondInTheMiddleOfTheSweep) {
   EXPECT_FALSE(report.passed());
   EXPECT_LT(report.removed_volume_mm3, verifyToolpath(kBlock, {}, facing(), {test::flat6()}, fineLattice()).removed_volume_mm3)
       << "stopped part way, it removed less than the whole path";
+}
+
+// ---- parallelForTicking (common/parallel.h): finishing's groups -------------------------------------------------------
+
+void sleepMs(int ms) { std::this_thread::sleep_for(std::chrono::milliseconds(ms)); }
+
+TEST(ParallelForTicking, RunsEveryItemOnceAndTicksWhileTheyRun) {
+  constexpr int kItems = 30;
+  std::vector<std::atomic<int>> runs(kItems);
+  std::vector<int> ticks;
+  std::vector<double> at;
+  const auto start = Clock::now();
+  const bool all = parallelForTicking(
+      kItems, 3,
+      [&](int k) {
+        sleepMs(k % 3 == 0 ? 40 : 5);  // of different cost
+        ++runs[k];
+      },
+      0.02,
+      [&](int done) {
+        ticks.push_back(done);
+        at.push_back(since(start));
+        return true;
+      });
+  EXPECT_TRUE(all);
+  for (int k = 0; k < kItems; ++k) EXPECT_EQ(runs[k].load(), 1) << "item " << k;
+  ASSERT_GE(ticks.size(), 3u) << "ticks while the items ran (about 0.2 s of them)";
+  for (std::size_t i = 1; i < ticks.size(); ++i) EXPECT_GE(ticks[i], ticks[i - 1]);
+  EXPECT_EQ(ticks.back(), kItems) << "the last tick counts every item";
+  for (std::size_t i = 1; i < at.size(); ++i) EXPECT_LT(at[i] - at[i - 1], 0.5);
+}
+
+TEST(ParallelForTicking, StartsNoItemOnceTickSaysStop) {
+  constexpr int kItems = 200, kThreads = 2;
+  std::atomic<int> started{0};
+  int ticks_after = 0, started_at_stop = -1;
+  const bool all = parallelForTicking(
+      kItems, kThreads,
+      [&](int) {
+        ++started;
+        sleepMs(50);
+      },
+      0.01,
+      [&](int done) {
+        if (started_at_stop >= 0) ++ticks_after;
+        if (started_at_stop < 0 && done >= 4) started_at_stop = started.load();
+        return started_at_stop < 0;
+      });
+  EXPECT_FALSE(all);
+  ASSERT_GE(started_at_stop, 4);
+  EXPECT_EQ(ticks_after, 0) << "no tick after it said stop";
+  // A thread past its check for the stop when it came may still take one more item; no other starts.
+  EXPECT_LE(started.load(), started_at_stop + kThreads);
+}
+
+TEST(ParallelForTicking, AnItemsExceptionComesOutOnceEveryWorkerStopped) {
+  std::atomic<int> running{0}, started{0};
+  auto body = [&](int k) {
+    ++started;
+    ++running;
+    sleepMs(5);
+    --running;
+    if (k == 3) throw std::runtime_error("item 3 failed");
+  };
+  try {
+    parallelForTicking(100, 2, body, 0.01, [](int) { return true; });
+    ADD_FAILURE() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "item 3 failed");
+  }
+  EXPECT_EQ(running.load(), 0);
+  EXPECT_LT(started.load(), 100) << "the items after the failure were not started";
+  EXPECT_THROW(parallelForTicking(
+                   4, 2, [](int) { sleepMs(50); }, 0.01, [](int) -> bool { throw std::logic_error("tick"); }),
+               std::logic_error);
+}
+
+// ---- finishing ---------------------------------------------------------------------------------------------------------
+
+// Finishing's groups run side by side while the calling thread reports; stopped, it starts no further group, reports
+// nothing more and returns what it finished, flagged cancelled.
+TEST(FinishingProgress, ReportsWhileItsGroupsRunAndStopsBetweenThem) {
+  const TopoDS_Shape top = test::cut(test::pocketedBlock(Vec3(0, 0, 0), Vec3(60, 40, 20), 24, 16, 8, 4),
+                                     test::solidCylinder(Vec3(50, 20, -1), Vec3(0, 0, 1), 4.0, 22));
+  const Part part = test::stepPart(test::cut(top, test::solidBox(Vec3(5, 5, -1), Vec3(25, 20, 4))), "two pockets");
+  const ToolLibrary library = loadToolLibrary(std::string(ART2PART_SOURCE_DIR) + "/config/tools.yaml");
+  PlanOptions options;
+  options.visibility.level = 2;
+  const VisibilityResult visibility = analyseVisibility(part, options.visibility);
+  const SetupPlan setups = planPartSetups(part, visibility, library, options);
+  const RoughingStage roughing = planPartRoughing(part, setups, library, options);
+
+  Recorder recorder;
+  const FinishingPlan whole = planPartFinishing(part, visibility, setups, roughing, library, options, recorder.sink());
+  expectTheContract(recorder, "finishing", since(recorder.start));
+  EXPECT_FALSE(whole.cancelled);
+  ASSERT_FALSE(whole.operations.empty());
+  for (std::size_t i = 1; i < recorder.reports.size(); ++i) EXPECT_GE(recorder.reports[i].done, recorder.reports[i - 1].done);
+
+  int reports_after = 0;
+  bool asked = false;
+  const FinishingPlan stopped =
+      planPartFinishing(part, visibility, setups, roughing, library, options, [&](const ProgressReport&) {
+        reports_after += asked;
+        asked = true;
+        return false;
+      });
+  EXPECT_TRUE(asked);
+  EXPECT_EQ(reports_after, 0);
+  EXPECT_TRUE(stopped.cancelled);
+  EXPECT_LT(stopped.operations.size(), whole.operations.size()) << "no group started after the stop";
 }
 
 // ---- through planPart -------------------------------------------------------------------------------------------------

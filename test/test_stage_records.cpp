@@ -6,7 +6,9 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <set>
 #include <string>
+#include <utility>
 
 #include "art2part/plan/plan_folder.h"
 #include "art2part/plan/stage_records.h"
@@ -94,6 +96,42 @@ TEST(StageRecords, AStageByStagePlanThroughRecordsWritesWhatPlanPartWrites) {
   };
   EXPECT_EQ(unclocked(staged.verification), unclocked(whole.verification))
       << "the report of the same path, apart or in one process";
+}
+
+// Finishing plans its groups of faces (one setup's direction each) side by side: the operations, their order and every
+// face's verdict are the same for any number of threads, as the record carries them (the planning clock aside).
+TEST(StageRecords, FinishingIsTheSameForAnyNumberOfThreads) {
+  // The drilled pocket with a pocket in its bottom and a notch in a side: faces finished along several directions.
+  const TopoDS_Shape top = test::cut(test::pocketedBlock(Vec3(0, 0, 0), Vec3(60, 40, 20), 24, 16, 8, 4),
+                                     test::solidCylinder(Vec3(50, 20, -1), Vec3(0, 0, 1), 4.0, 22));
+  const TopoDS_Shape bottom = test::cut(top, test::solidBox(Vec3(5, 5, -1), Vec3(25, 20, 4)));
+  const Part part = test::stepPart(test::cut(bottom, test::solidBox(Vec3(30, 34, 8), Vec3(45, 41, 14))), "notched");
+  const ToolLibrary library = loadToolLibrary(kConfig + "/tools.yaml");
+  for (MachineMode mode : {MachineMode::ThreeAxis, MachineMode::FiveAxis}) {
+    SCOPED_TRACE(machineModeName(mode));
+    PlanOptions options;
+    options.visibility.level = 2;
+    options.setups.mode = mode;
+    const VisibilityResult visibility = analyseVisibility(part, options.visibility);
+    const SetupPlan setups = planPartSetups(part, visibility, library, options);
+    const RoughingStage roughing = planPartRoughing(part, setups, library, options);
+    auto finishing = [&](int threads) {
+      PlanOptions o = options;
+      o.finishing.threads = threads;
+      FinishingPlan plan = planPartFinishing(part, visibility, setups, roughing, library, o);
+      plan.plan_seconds = 0;
+      for (FinishingOperation& op : plan.operations) op.plan_seconds = 0;
+      return plan;
+    };
+    const FinishingPlan one = finishing(1);
+    std::set<std::pair<int, std::string>> groups;  // (setup, direction) of the operations: several to interleave
+    for (const FinishingOperation& op : one.operations)
+      groups.insert({op.setup, std::to_string(op.direction.x()) + " " + std::to_string(op.direction.y()) + " " +
+                                   std::to_string(op.direction.z())});
+    ASSERT_GE(groups.size(), 3u);
+    const RecordBytes expected = finishingRecord(one);
+    for (int threads : {2, 3}) EXPECT_TRUE(finishingRecord(finishing(threads)) == expected) << threads << " threads";
+  }
 }
 
 TEST(StageRecords, BytesThatAreNotTheRecordAskedForAreRefusedByName) {

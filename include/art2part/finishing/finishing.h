@@ -58,6 +58,8 @@ struct FinishingOptions {
   double clearance = 5.0;          // mm above the stock's top: the retract plane of each direction
   double rapid_mm_min = 10000;     // for the time estimates
   double tool_change_s = 10;       // seconds per tool change, for the time estimates
+  int threads = 0;                 // groups of faces (a setup's direction) planned side by side, 0 = the hardware's;
+                                   // the plan is the same for any count
   PlanarFinishingOptions planar;
   SurfaceFinishingOptions surface;
   HoleOptions holes;

@@ -10,6 +10,7 @@
 
 #include <map>
 #include <memory>
+#include <mutex>
 #include <utility>
 #include <vector>
 
@@ -26,7 +27,7 @@ namespace art2part {
 class StockAfterRoughing {
  public:
   // `part`, `stock` (the block, part frame), `roughing` and `library` must outlive this. Nothing is computed until
-  // asked.
+  // asked. Threads may ask side by side: one answer is worked out at a time.
   StockAfterRoughing(const Part& part, const Mesh& stock, const RoughingPlan& roughing, const ToolLibrary& library,
                      const RoughingOptions::RawStock& model = {});
 
@@ -47,10 +48,14 @@ class StockAfterRoughing {
 
   // mm: the slabs may hold a film this thick on faces roughing cut (InProcessStock::doubt(): the model's film and its
   // projection's growth); 0 before any model is built.
-  double film() const { return film_; }
+  double film() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return film_;
+  }
 
  private:
   const InProcessStock& model(int setup);
+  std::vector<Region> project(int setup, const SetupFrame& frame, const std::vector<std::pair<double, double>>& extents);
 
   const Part& part_;
   const Mesh& stock_;
@@ -59,6 +64,7 @@ class StockAfterRoughing {
   RoughingOptions::RawStock options_;
   std::map<int, std::unique_ptr<InProcessStock>> models_;  // per setup, built when first asked
   double film_ = 0;
+  mutable std::mutex mutex_;  // over the models and their projections' caches
 };
 
 }  // namespace art2part

@@ -2,6 +2,7 @@
 #include "art2part/finishing/finishing.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -11,6 +12,7 @@
 
 #include "art2part/common/angles.h"
 #include "art2part/common/number_text.h"
+#include "art2part/common/parallel.h"
 #include "art2part/finishing/admissible.h"
 #include "art2part/finishing/face_assignment.h"
 #include "art2part/finishing/planar_finishing.h"
@@ -47,6 +49,7 @@ namespace {
 constexpr double kFinished = 0.99;   // a face whose reached share is at least this counts as finished
 constexpr double kRetryShare = 0.5;  // a face reached less than this by its choice tries its next choice
 constexpr int kRounds = 3;           // choices tried per face at most
+constexpr double kProgressSeconds = 0.25;  // reports while a round's groups are planned
 constexpr double kSpotPointDeg = 90;  // a spot drill's point
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
@@ -111,6 +114,19 @@ struct Tally {
   }
 };
 
+// What planning one group gives: its operations and its notes on its faces, taken into the plan and the tally in the
+// groups' order once a round's groups are all planned, so the plan is the same whatever ran side by side.
+struct GroupOutcome {
+  struct Note {
+    int face = -1, choice = -1;
+    double share = 0;
+    std::string why;
+  };
+  std::vector<FinishingOperation> ops;
+  std::vector<Note> notes;
+  void note(int face, int choice, double share, const std::string& why) { notes.push_back({face, choice, share, why}); }
+};
+
 // The context every group of a plan shares.
 struct Context {
   const FinishingInput& in;
@@ -163,8 +179,7 @@ std::vector<SlabState> stockLeftAlong(const Context& c, const Group& group) {
   return c.after_roughing.slabs(group.setup, frameFor(c.in.part, setup, group.direction));
 }
 
-void runPlanarGroup(const Context& c, const Group& group, const std::vector<int>& tried, Tally& tally,
-                    std::vector<FinishingOperation>& ops) {
+void runPlanarGroup(const Context& c, const Group& group, const std::vector<int>& tried, GroupOutcome& out) {
   const Setup& setup = c.in.setups.setups[group.setup];
   PlanarGroup pg;
   pg.setup = group.setup;
@@ -178,13 +193,12 @@ void runPlanarGroup(const Context& c, const Group& group, const std::vector<int>
     if (r.depth > 0 && r.deepest_reached < r.depth - 0.5)
       why = number(r.depth) + " mm deep: the flutes reach " + number(r.deepest_reached) +
             " mm down with the shank and holder clear";
-    tally.note(r.face, tried[r.face], r.size > 0 ? r.reached / r.size : 0, why);
+    out.note(r.face, tried[r.face], r.size > 0 ? r.reached / r.size : 0, why);
   }
-  for (FinishingOperation& op : result.operations) ops.push_back(std::move(op));
+  for (FinishingOperation& op : result.operations) out.ops.push_back(std::move(op));
 }
 
-void runSurfaceGroup(const Context& c, const Group& group, const std::vector<int>& tried, Tally& tally,
-                     std::vector<FinishingOperation>& ops) {
+void runSurfaceGroup(const Context& c, const Group& group, const std::vector<int>& tried, GroupOutcome& out) {
   const Part& part = c.in.part;
   const Setup& setup = c.in.setups.setups[group.setup];
   // The largest ball whose radius fits the faces' concave curvature.
@@ -215,7 +229,7 @@ void runSurfaceGroup(const Context& c, const Group& group, const std::vector<int
     const double radius = concaveRadius(part, f, c.triangles[f]);
     if (ball->diameter / 2 > radius + 1e-9)
       why = "concave radius " + number(radius) + " mm below the smallest ball's " + number(ball->diameter / 2) + " mm";
-    tally.note(f, tried[f], share, why);
+    out.note(f, tried[f], share, why);
   }
   if (r.path.empty()) return;
   FinishingOperation op;
@@ -226,7 +240,7 @@ void runSurfaceGroup(const Context& c, const Group& group, const std::vector<int
   op.faces = group.surface;
   op.path = std::move(r.path);
   op.plan_seconds = r.seconds;
-  ops.push_back(std::move(op));
+  out.ops.push_back(std::move(op));
 }
 
 // Holes: a spot and a drill run per setup and drill (one signature's tool load), a helix per hole. A through hole
@@ -443,6 +457,7 @@ FinishingPlan planFinishing(const FinishingInput& in, const FinishingOptions& op
 
   // Rounds: each face's next choice while the ones before reached little of it ("checked by profiling, not assumed").
   std::vector<int> tried(faces, -1);
+  long groups_done = 0;  // in the rounds before
   for (int round = 0; round < kRounds && !plan.cancelled; ++round) {
     std::vector<Group> groups;
     auto groupOf = [&](int setup, const Vec3& d) -> Group& {
@@ -475,24 +490,37 @@ FinishingPlan planFinishing(const FinishingInput& in, const FinishingOptions& op
     }
     if (groups.empty()) break;
     std::stable_sort(groups.begin(), groups.end(), [](const Group& a, const Group& b) { return a.setup < b.setup; });
-    for (std::size_t i = 0; i < groups.size(); ++i) {
+    std::vector<GroupOutcome> outcomes(groups.size());
+    std::atomic<int> latest{0};  // the group started last (of two starting at once, either)
+    auto plan_group = [&](int i) {
+      latest.store(std::max(latest.load(), i));
       const Group& group = groups[i];
+      if (!group.planar.empty()) runPlanarGroup(c, group, tried, outcomes[i]);
+      if (!group.surface.empty()) runSurfaceGroup(c, group, tried, outcomes[i]);
+    };
+    bool go_on = true;  // the sink's last answer (also after the round's last group)
+    auto tick = [&](int done) {
+      const Group& group = groups[latest.load()];
       std::ostringstream message;
       message << (round == 0 ? "" : "again, ") << "setup " << group.setup + 1 << " of " << in.setups.setups.size()
               << ": " << group.planar.size() << " plane and cylinder faces, " << group.surface.size() << " surfaces";
-      const double fraction = (round + static_cast<double>(i) / groups.size()) / kRounds;
-      if (!reportProgress(progress, "finishing", fraction, message.str())) {
-        plan.cancelled = true;
-        break;
-      }
-      if (!group.planar.empty()) runPlanarGroup(c, group, tried, tally, per_setup[group.setup]);
-      if (!group.surface.empty()) runSurfaceGroup(c, group, tried, tally, per_setup[group.setup]);
+      const double fraction = (round + static_cast<double>(done) / groups.size()) / kRounds;
+      go_on = reportProgress(progress, "finishing", fraction, message.str(), groups_done + done);
+      return go_on;
+    };
+    const int count = static_cast<int>(groups.size());
+    if (!parallelForTicking(count, options.threads, plan_group, kProgressSeconds, tick) || !go_on)
+      plan.cancelled = true;
+    groups_done += static_cast<long>(groups.size());
+    for (std::size_t i = 0; i < groups.size(); ++i) {
+      for (const GroupOutcome::Note& n : outcomes[i].notes) tally.note(n.face, n.choice, n.share, n.why);
+      for (FinishingOperation& op : outcomes[i].ops) per_setup[groups[i].setup].push_back(std::move(op));
     }
   }
   orderOperations(c, per_setup, plan);
   accountFaces(part, assignment, tally, flats.empty() ? 0.0 : flats.back()->diameter / 2, plan);
   plan.plan_seconds = secondsSince(start);
-  reportProgress(progress, "finishing", 1.0, plan.cancelled ? "cancelled" : "done");
+  if (!plan.cancelled) reportProgress(progress, "finishing", 1.0, "done", groups_done);  // none once told to stop
   return plan;
 }
 

@@ -31,6 +31,7 @@ const InProcessStock& StockAfterRoughing::model(int setup) {
 }
 
 std::vector<SlabState> StockAfterRoughing::slabs(int setup, const SetupFrame& frame) {
+  std::lock_guard<std::mutex> lock(mutex_);
   const InProcessStock& stock = model(setup);
   double top = -1e300, bottom = 1e300;
   for (const Vec3& v : stock_.vertices) {
@@ -43,7 +44,7 @@ std::vector<SlabState> StockAfterRoughing::slabs(int setup, const SetupFrame& fr
   std::vector<std::pair<double, double>> extents;
   for (int i = 0; i < n; ++i)
     extents.emplace_back(top - (top - bottom) * (i + 1) / n, top - (top - bottom) * i / n);
-  std::vector<Region> regions = slabs(setup, frame, extents);
+  std::vector<Region> regions = project(setup, frame, extents);
   std::vector<SlabState> out;
   for (int i = 0; i < n; ++i) out.push_back({extents[i].first, extents[i].second, std::move(regions[i])});
   return out;
@@ -51,10 +52,17 @@ std::vector<SlabState> StockAfterRoughing::slabs(int setup, const SetupFrame& fr
 
 std::vector<Region> StockAfterRoughing::slabs(int setup, const SetupFrame& frame,
                                               const std::vector<std::pair<double, double>>& extents) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return project(setup, frame, extents);
+}
+
+std::vector<Region> StockAfterRoughing::project(int setup, const SetupFrame& frame,
+                                                const std::vector<std::pair<double, double>>& extents) {
   return model(setup).slabs(frame, extents);
 }
 
 bool StockAfterRoughing::clearOverHole(int setup, const Hole& hole, const Tool& tool, double margin) {
+  std::lock_guard<std::mutex> lock(mutex_);
   const InProcessStock& stock = model(setup);
   const SetupFrame frame = setupFrame(part_, hole.axis);
   const Vec3 mouth_in_frame = hole.mouth - frame.origin;
@@ -67,7 +75,7 @@ bool StockAfterRoughing::clearOverHole(int setup, const Hole& hole, const Tool& 
   const int n = std::max(1, static_cast<int>(std::ceil((top - from) / (kSlabCells * stock.cell()))));
   std::vector<std::pair<double, double>> extents;
   for (int i = 0; i < n; ++i) extents.emplace_back(from + (top - from) * i / n, from + (top - from) * (i + 1) / n);
-  const std::vector<Region> regions = slabs(setup, frame, extents);
+  const std::vector<Region> regions = project(setup, frame, extents);
   for (int i = 0; i < n; ++i) {
     // The widest the body is over the slab, the tip anywhere from above it down to the hole's deepest point.
     const double reach = extents[i].second - lowest_tip;
