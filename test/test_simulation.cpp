@@ -4,7 +4,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <utility>
 #include <sys/wait.h>
 
 #include "art2part/geometry/mesh_io.h"
@@ -420,6 +422,101 @@ TEST(Simulation, ThreadCountDoesNotChangeTheResult) {
   EXPECT_DOUBLE_EQ(one.removed_volume_mm3, three.removed_volume_mm3);
   EXPECT_DOUBLE_EQ(one.worst_gouge_mm, three.worst_gouge_mm);
   EXPECT_EQ(one.gouges, three.gouges);
+}
+
+// ---- checkpoints: a verification resumed where an earlier one's path was the same -----------------------------------
+
+// Three setups over the block: a dip into the part (a gouge to carry over), a facing pass over its top, and two
+// passes; `last` moves the last setup's second pass, `first_dip` the first setup's dip.
+Toolpath threeSetups(double last, double first_dip = 9.95) {
+  Toolpath path;
+  auto add = [&](Toolpath piece, int setup, int op) {
+    for (CutterLocation& c : piece) c.setup = setup, c.op = op, path.push_back(c);
+  };
+  add(pass("flat6", Vec3(10, 10, first_dip), Vec3(30, 10, first_dip)), 0, 0);
+  add(pass("flat6", Vec3(-3, 5, 11), Vec3(43, 5, 11)), 1, 1);
+  add(pass("flat6", Vec3(-3, 15, 11), Vec3(43, 15, 11)), 2, 2);
+  add(pass("flat6", Vec3(-3, last, 10.5), Vec3(43, last, 10.5)), 2, 3);
+  return path;
+}
+
+// The report without the clock and without where its sweep began.
+std::string unclocked(VerificationReport r) {
+  r.seconds_sweep = r.seconds_total = r.moves_per_second = 0;
+  r.resumed_at_row = 0;
+  return reportJson(r);
+}
+
+TEST(Simulation, AVerificationResumedFromACheckpointReportsWhatTheWholeSweepDoes) {
+  VerifyOptions keep = options(0.25, 2);
+  keep.checkpoints = 4;
+  VerificationState first;
+  const auto original = verifyToolpath(kBlock, {}, threeSetups(10), {kFlat}, keep, &first);
+  EXPECT_GT(original.gouges, 0);
+  ASSERT_EQ(first.checkpoints.size(), 2u) << "at the two setup changes";
+  EXPECT_EQ(first.checkpoints[0].row, 4);
+  EXPECT_EQ(first.checkpoints[1].row, 8);
+
+  const VerifyOptions o = options(0.25, 2);
+  // The last setup changed: resumed at its start, with the first setup's gouge and the second's volume carried.
+  const Toolpath changed = threeSetups(12);
+  VerificationState whole_state, resumed_state;
+  const auto whole = verifyToolpath(kBlock, {}, changed, {kFlat}, o, &whole_state);
+  const auto resumed = verifyToolpath(kBlock, {}, changed, {kFlat}, o, &resumed_state, {}, first.checkpoints);
+  EXPECT_EQ(resumed.resumed_at_row, 8);
+  EXPECT_EQ(whole.resumed_at_row, 0);
+  EXPECT_GT(resumed.gouges, 0);
+  EXPECT_EQ(unclocked(resumed), unclocked(whole));
+  EXPECT_DOUBLE_EQ(resumed_state.stock.volume(), whole_state.stock.volume());
+  EXPECT_NE(unclocked(resumed), unclocked(original)) << "the change is seen";
+  // A tool the earlier path had and this one does not use (left out with its operation) changes nothing.
+  EXPECT_EQ(verifyToolpath(kBlock, {}, changed, {kBall, kFlat}, o, nullptr, {}, first.checkpoints).resumed_at_row, 8);
+
+  // A change in the first setup: nothing to resume from.
+  const Toolpath early = threeSetups(10, 9.9);
+  const auto early_resumed = verifyToolpath(kBlock, {}, early, {kFlat}, o, nullptr, {}, first.checkpoints);
+  EXPECT_EQ(early_resumed.resumed_at_row, 0);
+  EXPECT_EQ(unclocked(early_resumed), unclocked(verifyToolpath(kBlock, {}, early, {kFlat}, o)));
+  // Nor with another tolerance, another lattice or another tool of the same name.
+  VerifyOptions tighter = o;
+  tighter.tolerance = 0.005;
+  EXPECT_EQ(verifyToolpath(kBlock, {}, changed, {kFlat}, tighter, nullptr, {}, first.checkpoints).resumed_at_row, 0);
+  EXPECT_EQ(verifyToolpath(kBlock, {}, changed, {kFlat}, options(0.3, 2), nullptr, {}, first.checkpoints)
+                .resumed_at_row,
+            0);
+  Tool longer = kFlat;
+  longer.stickout += 5;
+  EXPECT_EQ(verifyToolpath(kBlock, {}, changed, {longer}, o, nullptr, {}, first.checkpoints).resumed_at_row, 0);
+}
+
+TEST(Simulation, APathSweptInPiecesBetweenPlacementsIsSweptAsAWhole) {
+  const Toolpath path = threeSetups(10);
+  const DexelLattice lattice = DexelLattice::over(stockBox(boundingBox(kBlock), 2), 0.25);
+  const MeshDexels part(kBlock, lattice);
+  const PartDistance distance(kBlock);
+  const std::map<std::string, ToolSolid> tools{{"flat6", toolSolid(kFlat, 0.001)}};
+  Stock whole = boxStock(lattice), pieces = boxStock(lattice);
+  addSolid(whole, part);
+  addSolid(pieces, part);
+  const SweepResult all = sweepToolpath(whole, part, distance, path, tools);
+  SweepOptions o;
+  std::map<int, MoveFinding> findings;
+  double removed = 0;
+  for (const auto& [first, end] : std::vector<std::pair<int, int>>{{0, 4}, {4, 8}, {8, -1}}) {
+    o.first_row = first;
+    o.end_row = end;
+    const SweepResult piece = sweepToolpath(pieces, part, distance, path, tools, o);
+    for (const auto& [row, f] : piece.findings) findings[row] = f;
+    for (const auto& [op, swept] : piece.by_op) removed += swept.removed_mm3;
+  }
+  EXPECT_EQ(findings.size(), all.findings.size());
+  EXPECT_DOUBLE_EQ(pieces.volume(), whole.volume());
+  double all_removed = 0;
+  for (const auto& [op, swept] : all.by_op) all_removed += swept.removed_mm3;
+  EXPECT_NEAR(removed, all_removed, 1e-9 * all_removed);
+  o.first_row = 5;  // in the middle of the second setup's pass
+  o.end_row = -1;
+  EXPECT_THROW(sweepToolpath(pieces, part, distance, path, tools, o), InputError);
 }
 
 TEST(Simulation, RemainingStockMeshIsClosedAndMeasuresTheStock) {

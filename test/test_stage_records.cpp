@@ -92,6 +92,7 @@ TEST(StageRecords, AStageByStagePlanThroughRecordsWritesWhatPlanPartWrites) {
   }
   auto unclocked = [](VerificationReport r) {
     r.seconds_sweep = r.seconds_total = r.moves_per_second = 0;
+    r.resumed_at_row = 0;  // how the sweep went (a trial without useless roughing resumes), not what it found
     return verificationRecord(r);
   };
   EXPECT_EQ(unclocked(staged.verification), unclocked(whole.verification))

@@ -24,7 +24,9 @@
 namespace art2part {
 
 // Verifies a combined plan (its toolpath and tools) into `state`, as the caller's verification does (planPart: in
-// process; the cell's stage chain: the verification node's service, which leaves `state` empty).
+// process, each trial resumed from the first verification's checkpoints at the last setup change before the first
+// operation left out (verify.h's SweepCheckpoint); the cell's stage chain: the verification node's service, which
+// leaves `state` empty).
 using PlanVerifier = std::function<VerificationReport(const PlanResult& plan, VerificationState& state)>;
 
 // The roughing operations (indices into plan.roughing.operations) the verified plan's simulation found useless.

@@ -70,6 +70,11 @@ struct SweepOptions {
   double step_fraction = 0.5;  // of the finest lattice spacing: the most any tool point moves between poses
   bool cusp_step = true;       // also hold the step to sqrt(4 rho tolerance) (cusps under half the tolerance)
   int threads = 0;             // 0 = the hardware's
+  // The rows swept: [first_row, end_row), end_row -1 for the path's end. Both ends are the path's ends or rows where
+  // the tool is placed (toolPlacedAt), so a path swept in pieces leaves the stock and findings it leaves in one sweep;
+  // the stock given is the stock as it stood before first_row. Other rows: InputError.
+  int first_row = 0;
+  int end_row = -1;
 };
 
 constexpr double kLevelCutBinMm = 0.25;  // the height bins of OperationSweep::level_cut_by_height_mm3
@@ -123,6 +128,9 @@ struct StraightRun {
   bool placed = false;      // first is a tool placed at its point (first row, new tool or setup): no motion
 };
 std::vector<StraightRun> straightRuns(const Toolpath& path);
+
+// Whether row `row` places the tool at its point (the first row, a new tool or a new setup) rather than moving to it.
+bool toolPlacedAt(const Toolpath& path, int row);
 
 // A pose of the sweep for one family of rays: the tool at `pose`, and also everywhere up to `rise` mm further up its
 // axis, and everywhere between `pose` and `pose` moved back by `slide` mm along the family's axis.

@@ -36,6 +36,9 @@ struct VerifyOptions {
   // of a concave curved face (concaveSag, face.h: cutting its true surface cuts that deep into the mesh), and what a
   // drilled bore's drill may be over its diameter, radially. Empty: none.
   std::vector<double> face_allowance;
+  // Sweep checkpoints kept in VerificationState::checkpoints for a later verification to resume from (below): at
+  // most this many, at setup changes spread evenly over the path's rows, each a copy of the stock. 0: none.
+  int checkpoints = 0;
 };
 
 struct GougeRecord {
@@ -108,6 +111,8 @@ struct VerificationReport {
   double stock_volume_mm3 = 0, removed_volume_mm3 = 0, remaining_volume_mm3 = 0, part_volume_mm3 = 0;
   std::map<int, OperationCheck> by_op;  // by toolpath op, every op of the path (never cut to max_listed)
   int closed_open_mesh_edges = 0;  // the part's mesh was open: its boundary chain's edges, closed as solid_closure.h says
+  int resumed_at_row = 0;  // the sweep began here, from a checkpoint (0: at the first row); moves_per_second counts
+                           // the rows swept in this call
 
   bool cancelled = false;  // the progress sink asked to stop: the findings of the moves swept so far, nothing left
                            // measured; never passed
@@ -115,10 +120,26 @@ struct VerificationReport {
   bool passed() const { return gouges == 0 && collisions == 0 && !cancelled; }
 };
 
-// What verifyToolpath keeps for outputs beyond the report (the picture, the remaining stock's mesh).
+// The sweep as it stood before a row where the tool is placed (a setup change), kept so that a later verification of a
+// path whose rows before it are the same starts there instead of at the first row: a plan tried without operations
+// it may not need (useless_operations.h) is swept the same up to the first one left out. A checkpoint is only used
+// when its key matches: a hash of the rows before it and of everything else the sweep depends on (the lattice, the
+// part and stock meshes, the tools' shapes, tolerance, step and chord).
+struct SweepCheckpoint {
+  int row = 0;                            // the first row not yet swept
+  std::uint64_t key = 0;                  // of rows [0, row) and the sweep's inputs
+  Stock stock;                            // before that row
+  std::map<int, MoveFinding> findings;    // of the rows before it (SweepResult::findings)
+  std::map<int, OperationSweep> by_op;    // of the ops before it (setup changes: no op goes on past it)
+  std::int64_t poses = 0;
+};
+
+// What verifyToolpath keeps for outputs beyond the report (the picture, the remaining stock's mesh), and the
+// checkpoints VerifyOptions::checkpoints asks for.
 struct VerificationState {
   Stock stock;
   MeshDexels part;
+  std::vector<SweepCheckpoint> checkpoints;  // by row
 };
 
 // `triangle_face`: the face of each part triangle (for cusps per face; may be empty). Throws InputError for a tool id
@@ -126,9 +147,12 @@ struct VerificationState {
 // Reports to `progress` (stage "verification"): before the lattice is built, during the sweep every
 // kSweepReportSeconds with the share of the moves swept (sweep.h), and before the leftover is measured; when it asks
 // to stop, returns within a second with `cancelled` set.
+// `resume_from`: an earlier verification's checkpoints (VerificationState::checkpoints); the sweep starts from the
+// latest whose key matches this call's, and the report is the one the whole sweep gives (test_simulation checks it).
 VerificationReport verifyToolpath(const Mesh& part, const std::vector<int>& triangle_face, const Toolpath& path,
                                   const std::vector<Tool>& tools, const VerifyOptions& options = {},
-                                  VerificationState* state = nullptr, const ProgressSink& progress = {});
+                                  VerificationState* state = nullptr, const ProgressSink& progress = {},
+                                  const std::vector<SweepCheckpoint>& resume_from = {});
 
 // The lattice spacing `resolution = 0` stands for: about 1.5 M rays over the box, never finer than 0.1 mm.
 double automaticResolution(const Box& box);

@@ -299,8 +299,12 @@ PlanResult planPart(const Part& part, const ToolLibrary& library, const PlanOpti
   if (options.verify && !r.toolpath.empty() && !r.cancelled) {
     start = Clock::now();
     stage("verification", 0, "simulating " + std::to_string(r.toolpath.size()) + " moves");
-    r.verification = verifyToolpath(part.mesh, part.triangle_face, r.toolpath, r.tools,
-                                    planVerifyOptions(part, r, library, options), &r.simulation, progress);
+    VerifyOptions first = planVerifyOptions(part, r, library, options);
+    if (options.drop_useless) first.checkpoints = options.resume_checkpoints;
+    r.verification =
+        verifyToolpath(part.mesh, part.triangle_face, r.toolpath, r.tools, first, &r.simulation, progress);
+    const std::vector<SweepCheckpoint> checkpoints = std::move(r.simulation.checkpoints);
+    r.simulation.checkpoints.clear();
     r.cancelled = r.verification.cancelled;
     r.verified = !r.cancelled;
     timed("verification", start);
@@ -309,7 +313,7 @@ PlanResult planPart(const Part& part, const ToolLibrary& library, const PlanOpti
       dropUselessRoughing(r, part, library, options, [&](const PlanResult& p, VerificationState& state) {
         stage("verification", 0, "simulating again without the roughing that removes almost nothing");
         return verifyToolpath(part.mesh, part.triangle_face, p.toolpath, p.tools,
-                              planVerifyOptions(part, p, library, options), &state, progress);
+                              planVerifyOptions(part, p, library, options), &state, progress, checkpoints);
       });
       if (r.useless.found > 0) timed("verification without useless roughing", start);
     }

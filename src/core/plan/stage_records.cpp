@@ -75,7 +75,7 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(VerificationReport, gouges, worst_gouge_mm, g
                                    region_count, faces, face_count, face_checks, resolution_mm, tolerance_mm, spacing,
                                    dexels, moves, poses, seconds_sweep, seconds_total, moves_per_second, stock_box,
                                    stock_volume_mm3, removed_volume_mm3, remaining_volume_mm3, part_volume_mm3,
-                                   by_op, closed_open_mesh_edges, cancelled)
+                                   by_op, closed_open_mesh_edges, resumed_at_row, cancelled)
 
 // A toolpath point as an array (a plan has up to millions): [op, setup, tool, move, tip, axis].
 void to_json(json& j, const CutterLocation& c) { j = {c.op, c.setup, c.tool, c.move, c.tip, c.axis}; }

@@ -96,6 +96,7 @@ std::string reportJson(const VerificationReport& r) {
   j["seconds"] = std::round(r.seconds_total * 1000) / 1000;
   j["seconds_sweep"] = std::round(r.seconds_sweep * 1000) / 1000;
   j["moves_per_second"] = std::round(r.moves_per_second);
+  j["resumed_at_row"] = r.resumed_at_row;
   j["stock"] = {{"box", box(r.stock_box)}, {"volume_mm3", mm(r.stock_volume_mm3)}};
   j["removed_volume_mm3"] = mm(r.removed_volume_mm3);
   j["remaining_volume_mm3"] = mm(r.remaining_volume_mm3);

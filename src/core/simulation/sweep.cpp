@@ -174,11 +174,11 @@ class Worker {
       : stock_(stock), extents_(extents), gaps_(gaps), tiles_(stock.lattice, extents), part_(part),
         part_extents_(part_extents), distance_(distance), options_(options), thread_(thread), threads_(threads) {}
 
-  // Every run of the path over this worker's rows; after each, the rows done go to `rows_done` and a raised `stop`
+  // Every run given over this worker's rows; after each, the rows done go to `rows_done` and a raised `stop`
   // ends it (both may be null).
-  void run(const Toolpath& path, const std::vector<const ToolSolid*>& tools, std::atomic<int>* rows_done = nullptr,
-           const std::atomic<bool>* stop = nullptr) {
-    for (const StraightRun& run : straightRuns(path)) {
+  void run(const Toolpath& path, const std::vector<StraightRun>& runs, const std::vector<const ToolSolid*>& tools,
+           std::atomic<int>* rows_done = nullptr, const std::atomic<bool>* stop = nullptr) {
+    for (const StraightRun& run : runs) {
       if (stop && stop->load(std::memory_order_relaxed)) return;
       sweepRun(path, *tools[run.last], run);
       if (rows_done) rows_done->store(run.last + 1, std::memory_order_relaxed);
@@ -447,13 +447,29 @@ std::vector<const ToolSolid*> toolOfEveryRow(const Toolpath& path, const std::ma
   return out;
 }
 
+// The runs of rows [first, end) (end -1: the path's end); both ends must be tool placements or the path's ends.
+std::vector<StraightRun> runsBetween(const Toolpath& path, int first, int end) {
+  const int n = static_cast<int>(path.size());
+  if (end < 0) end = n;
+  auto boundary = [&](int row) { return row == 0 || row == n || (row > 0 && row < n && toolPlacedAt(path, row)); };
+  if (first < 0 || first > end || end > n || !boundary(first) || !boundary(end))
+    throw InputError("sweep: rows " + std::to_string(first) + " to " + std::to_string(end) + " of " +
+                     std::to_string(n) + " do not begin and end where the tool is placed");
+  std::vector<StraightRun> runs = straightRuns(path);
+  std::vector<StraightRun> between;
+  for (const StraightRun& run : runs)
+    if (run.first >= first && run.first < end) between.push_back(run);
+  return between;
+}
+
 // Every worker on a thread of its own while the calling thread reports the share of the rows the slowest has swept
 // and raises the stop when the sink says so. True when it was stopped.
-bool runReporting(std::vector<Worker>& workers, const Toolpath& path, const std::vector<const ToolSolid*>& row_tools,
-                  const ProgressSink& progress) {
+bool runReporting(std::vector<Worker>& workers, const Toolpath& path, const std::vector<StraightRun>& runs,
+                  const std::vector<const ToolSolid*>& row_tools, const ProgressSink& progress) {
   const int n = static_cast<int>(workers.size());
   std::unique_ptr<std::atomic<int>[]> rows_done(new std::atomic<int>[n]);
-  for (int t = 0; t < n; ++t) rows_done[t].store(0);
+  const int first = runs.empty() ? 0 : runs.front().first;
+  for (int t = 0; t < n; ++t) rows_done[t].store(first);
   std::atomic<bool> stop{false};
   std::mutex mutex;
   std::condition_variable finished_changed;
@@ -461,7 +477,7 @@ bool runReporting(std::vector<Worker>& workers, const Toolpath& path, const std:
   std::vector<std::thread> running;
   for (int t = 0; t < n; ++t)
     running.emplace_back([&, t] {
-      workers[t].run(path, row_tools, &rows_done[t], &stop);
+      workers[t].run(path, runs, row_tools, &rows_done[t], &stop);
       {
         const std::lock_guard<std::mutex> lock(mutex);
         ++finished;
@@ -492,6 +508,7 @@ SweepResult sweepToolpath(Stock& stock, const MeshDexels& part, const PartDistan
                           const SweepOptions& options, const ProgressSink& progress) {
   const auto start = std::chrono::steady_clock::now();
   const std::vector<const ToolSolid*> row_tools = toolOfEveryRow(path, tools);
+  const std::vector<StraightRun> runs = runsBetween(path, options.first_row, options.end_row);
   const int threads = options.threads > 0 ? options.threads
                                           : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   Extents extents = stockExtents(stock), gaps = stockGaps(stock);
@@ -501,11 +518,11 @@ SweepResult sweepToolpath(Stock& stock, const MeshDexels& part, const PartDistan
     workers.emplace_back(stock, extents, gaps, part, part_extents, part_distance, options, t, threads);
   SweepResult result;
   if (progress) {
-    result.cancelled = runReporting(workers, path, row_tools, progress);
+    result.cancelled = runReporting(workers, path, runs, row_tools, progress);
   } else {
     std::vector<std::thread> running;
-    for (int t = 1; t < threads; ++t) running.emplace_back([&, t] { workers[t].run(path, row_tools); });
-    workers[0].run(path, row_tools);
+    for (int t = 1; t < threads; ++t) running.emplace_back([&, t] { workers[t].run(path, runs, row_tools); });
+    workers[0].run(path, runs, row_tools);
     for (std::thread& t : running) t.join();
   }
   for (const Worker& w : workers) {

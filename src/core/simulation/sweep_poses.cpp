@@ -65,9 +65,7 @@ std::vector<SweepPose> translationPoses(const ToolPose& from, const ToolPose& to
   return poses;
 }
 
-bool continues(const Toolpath& path, std::size_t m) {
-  return m > 0 && path[m - 1].tool == path[m].tool && path[m - 1].setup == path[m].setup;
-}
+bool continues(const Toolpath& path, std::size_t m) { return !toolPlacedAt(path, static_cast<int>(m)); }
 
 // Whether move m + 1 carries on along the line of the run that starts with move `first`.
 bool carriesOn(const Toolpath& path, std::size_t first, std::size_t m) {
@@ -79,6 +77,10 @@ bool carriesOn(const Toolpath& path, std::size_t first, std::size_t m) {
 }
 
 }  // namespace
+
+bool toolPlacedAt(const Toolpath& path, int row) {
+  return row == 0 || path[row - 1].tool != path[row].tool || path[row - 1].setup != path[row].setup;
+}
 
 std::vector<StraightRun> straightRuns(const Toolpath& path) {
   std::vector<StraightRun> runs;

@@ -8,6 +8,7 @@
 #include "art2part/geometry/solid_closure.h"
 #include "art2part/simulation/mesh_dexels.h"
 #include "art2part/simulation/part_distance.h"
+#include "sweep_checkpoints.h"
 
 namespace art2part {
 
@@ -132,7 +133,8 @@ double automaticResolution(const Box& box) {
 
 VerificationReport verifyToolpath(const Mesh& part_mesh, const std::vector<int>& part_faces, const Toolpath& path,
                                   const std::vector<Tool>& tools, const VerifyOptions& options,
-                                  VerificationState* state, const ProgressSink& progress) {
+                                  VerificationState* state, const ProgressSink& progress,
+                                  const std::vector<SweepCheckpoint>& resume_from) {
   const auto start = std::chrono::steady_clock::now();
   VerificationReport r;
   if (path.empty()) throw InputError("verify: the toolpath has no points");
@@ -178,14 +180,39 @@ VerificationReport verifyToolpath(const Mesh& part_mesh, const std::vector<int>&
     sweeping = [&progress](const ProgressReport& p) {
       return reportProgress(progress, p.stage, kSweepStart + (kSweepEnd - kSweepStart) * p.fraction, p.message, p.done);
     };
-  const SweepResult sweep = sweepToolpath(stock, part_dexels, distance, path, solids, sweep_options, sweeping);
+  const std::uint64_t inputs = sweep_checkpoints::inputsKey(lattice, part, options.stock_mesh, options);
+  SweepResult sweep;
+  const int resume = sweep_checkpoints::resumable(resume_from, path, inputs, tools);
+  if (resume >= 0) {
+    const SweepCheckpoint& c = resume_from[resume];
+    stock = c.stock;
+    sweep.findings = c.findings;
+    sweep.by_op = c.by_op;
+    sweep.poses = c.poses;
+    r.resumed_at_row = c.row;
+  }
+  // Swept piece by piece from one checkpoint row to the next, a copy of the stock kept at each (handed to `state` at
+  // the end: `resume_from` may be a state's own).
+  std::vector<SweepCheckpoint> kept;
+  std::vector<int> ends = sweep_checkpoints::checkpointRows(path, std::max(options.checkpoints, 0));
+  ends.erase(ends.begin(), std::upper_bound(ends.begin(), ends.end(), r.resumed_at_row));
+  const std::vector<std::uint64_t> keys = sweep_checkpoints::prefixKeys(path, ends, inputs, tools);
+  ends.push_back(static_cast<int>(path.size()));
+  for (std::size_t k = 0; k < ends.size() && !sweep.cancelled; ++k) {
+    sweep_options.first_row = k == 0 ? r.resumed_at_row : ends[k - 1];
+    sweep_options.end_row = ends[k];
+    sweep_checkpoints::addSweep(sweep, sweepToolpath(stock, part_dexels, distance, path, solids, sweep_options,
+                                                     sweeping));
+    if (state && k + 1 < ends.size() && !sweep.cancelled)
+      kept.push_back({ends[k], keys[k], stock, sweep.findings, sweep.by_op, sweep.poses});
+  }
   r.cancelled = sweep.cancelled ||
                 !reportProgress(progress, "verification", kSweepEnd, "measuring what is left of the stock");
   r.poses = sweep.poses;
   for (const CutterLocation& row : path) r.by_op[row.op];
   for (const auto& [op, swept] : sweep.by_op) r.by_op[op].swept = swept;
   r.seconds_sweep = sweep.seconds;
-  r.moves_per_second = r.moves / std::max(sweep.seconds, 1e-9);
+  r.moves_per_second = (r.moves - r.resumed_at_row) / std::max(sweep.seconds, 1e-9);
   listFindings(r, sweep.findings, path, options.tolerance, options.face_allowance, triangle_face, distance,
                options.max_listed);
 
@@ -201,6 +228,7 @@ VerificationReport verifyToolpath(const Mesh& part_mesh, const std::vector<int>&
                                options.face_allowance);
   listLeftover(r, std::move(leftover), options.max_listed);
   if (state) {
+    state->checkpoints = std::move(kept);
     state->stock = std::move(stock);
     state->part = std::move(part_dexels);
   }
