@@ -579,6 +579,48 @@ TEST(SurfaceFinishing, ShankAndHolderKeepClearOfTheStockRoughingLeft) {
 
 namespace {
 
+// Two domes of radius 8 on one 140 x 40 x 10 block, 100 mm apart, grown by `grow`.
+TopoDS_Shape twoDomes(double grow) {
+  TopoDS_Shape shape =
+      BRepPrimAPI_MakeBox(gp_Pnt(-20 - grow, -20 - grow, -grow), gp_Pnt(120 + grow, 20 + grow, 10 + grow)).Shape();
+  for (double x : {0.0, 100.0})
+    shape = BRepAlgoAPI_Fuse(shape, BRepPrimAPI_MakeSphere(gp_Pnt(x, 0, 10), 8 + grow, 0, M_PI / 2).Shape()).Shape();
+  return shape;
+}
+
+}  // namespace
+
+TEST(SurfaceFinishing, LinksStayDownWhereTheMapsProveThemClearHoweverLong) {
+  // From one dome to the other is 84 mm of flat block (14 diameters): the link passes over it at the height the
+  // clearance maps prove clear, not over the clearance plane, and the simulation finds it clear.
+  const Part part = stepPart(twoDomes(0), "two_domes");
+  const Part stock = stepPart(twoDomes(0.3), "two_domes_stock");
+  const std::vector<int> spheres = facesOfType(part, SurfaceType::Sphere);
+  ASSERT_EQ(spheres.size(), 2u);
+  const Tool tool = ball6();
+  const SetupFrame frame = setupFrame(part, Vec3::UnitZ());
+  const SurfaceFinishingResult r = finishSurfaces3Axis(part, spheres, frame, tool, 0, SurfaceFinishingOptions{});
+  ASSERT_GT(r.path.size(), 100u);
+  EXPECT_EQ(r.retracts, 0);
+  double longest = 0;  // the longest rapid across, and how high it went
+  double its_height = 0;
+  for (std::size_t i = 1; i < r.path.size(); ++i) {
+    const Vec3 d = r.path[i].tip - r.path[i - 1].tip;
+    if (r.path[i].move == MoveKind::Rapid && std::hypot(d.x(), d.y()) > longest)
+      longest = std::hypot(d.x(), d.y()), its_height = r.path[i].tip.z();
+  }
+  EXPECT_GT(longest, 60.0) << "the link from dome to dome";
+  EXPECT_LT(its_height, 18 + SurfaceFinishingOptions{}.clearance - 1) << "under the clearance plane";
+  VerifyOptions vo;
+  vo.stock_mesh = &stock.mesh;
+  vo.resolution = 0.3;
+  const VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, r.path, {tool}, vo);
+  EXPECT_EQ(report.gouges, 0);
+  EXPECT_EQ(report.collisions, 0);
+}
+
+namespace {
+
 // A 50 x 40 x 20 block with a spherical pocket of radius 12 sunk 8 mm into its top (a concave face), grown by `grow`.
 TopoDS_Shape pocket(double grow) {
   const TopoDS_Shape block =

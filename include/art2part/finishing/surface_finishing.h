@@ -83,7 +83,8 @@ struct SurfaceFinishingOptions {
   double clearance = 5.0;           // mm above the highest point of the part along the direction: the retract height
   double link_margin = 1.0;         // mm: short links pass this high above what the tool must clear
   double feed_link_mm = 0.0;        // links along the CL surface up to this long; 0 = the tool's diameter
-  double short_link_mm = 0.0;       // links at a safe height up to this long, longer ones retract; 0 = 10 diameters
+  double short_link_mm = 0.0;       // links at a safe height up to this long, longer ones retract; 0 = any length (the
+                                    // height the clearance maps prove clear along the link: part, skin and stock)
   double max_tilt_deg = 60;         // 5-axis: the most the axis leans from the setup direction
   double tilt_step_deg = 2;         // 5-axis: the tilt is searched in steps of this
   double max_tilt_rate_deg_mm = 2;  // 5-axis: how fast the axis may turn along a pass

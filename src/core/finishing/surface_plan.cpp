@@ -336,7 +336,7 @@ Plan planPasses(const Part& part, const std::vector<int>& faces_in, const SetupF
   const double R = 0.5 * tool.diameter, r = plan.cutter->cornerRadius(), Rp = R - r;
   const Box bounds = plan.cutter->bounds();
   plan.top = bounds.max.z();
-  plan.short_link = o.short_link_mm > 0 ? o.short_link_mm : 10 * tool.diameter;
+  plan.short_link = o.short_link_mm > 0 ? o.short_link_mm : kInf;
 
   // The spacing of the cutter centres on a flat (a flat end mill: passes overlapping by a fifth).
   const double spacing = r > 0 ? scallopStepover(r, o.scallop, kInf) : kFlatStepoverOfDiameter * tool.diameter;
