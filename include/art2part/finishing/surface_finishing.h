@@ -51,9 +51,9 @@
 //
 // Linking: consecutive passes are joined along the CL surface (a feed, every point dropped) when the link is at most
 // feed_link_mm long and stays in the region with the body clear (zig-zag rasters, waterline levels stepping down);
-// otherwise the tool lifts at feed until it clears the part grown by the skin and the stock left, and then either moves over at a safe
-// height (the highest of that clearance along the way, plus link_margin) when the next pass starts within
-// short_link_mm, or rapids at the clearance height.
+// otherwise the tool lifts at feed until it clears the part grown by the skin and the stock left, and then moves over
+// at a safe height (the highest of that clearance along the way, plus link_margin) when that is under the clearance
+// height (and the next pass starts within short_link_mm, when one is set), else rapids at the clearance height.
 #pragma once
 
 #include <string>

@@ -152,7 +152,8 @@ struct Linked {
   int retracts = 0;
 };
 // 3-axis links between the ordered passes: lift at feed to where the tool clears the part grown by the skin (ctx.safe),
-// then over at a safe height when the next pass starts within `short_link`, else through `clearance_z`.
+// then over at the safe height along the link when it is under `clearance_z` and the next pass starts within
+// `short_link` (infinite: any), else through `clearance_z`.
 Linked link3Axis(const Context& ctx, const std::vector<Pass>& passes, double short_link, double link_margin,
                  double clearance_z);
 
