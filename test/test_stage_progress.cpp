@@ -224,7 +224,7 @@ TEST(VerificationProgress, StopsWithinASecondInTheMiddleOfTheSweep) {
       << "stopped part way, it removed less than the whole path";
 }
 
-// ---- parallelForTicking (common/parallel.h): finishing's groups -------------------------------------------------------
+// ---- parallelForTicking (common/parallel.h): finishing's groups -----------------------------------------------------
 
 void sleepMs(int ms) { std::this_thread::sleep_for(std::chrono::milliseconds(ms)); }
 
@@ -299,7 +299,7 @@ TEST(ParallelForTicking, AnItemsExceptionComesOutOnceEveryWorkerStopped) {
                std::logic_error);
 }
 
-// ---- finishing ---------------------------------------------------------------------------------------------------------
+// ---- finishing ------------------------------------------------------------------------------------------------------
 
 // Finishing's groups run side by side while the calling thread reports; stopped, it starts no further group, reports
 // nothing more and returns what it finished, flagged cancelled.
@@ -319,7 +319,8 @@ TEST(FinishingProgress, ReportsWhileItsGroupsRunAndStopsBetweenThem) {
   expectTheContract(recorder, "finishing", since(recorder.start));
   EXPECT_FALSE(whole.cancelled);
   ASSERT_FALSE(whole.operations.empty());
-  for (std::size_t i = 1; i < recorder.reports.size(); ++i) EXPECT_GE(recorder.reports[i].done, recorder.reports[i - 1].done);
+  for (std::size_t i = 1; i < recorder.reports.size(); ++i)
+    EXPECT_GE(recorder.reports[i].done, recorder.reports[i - 1].done);
 
   int reports_after = 0;
   bool asked = false;

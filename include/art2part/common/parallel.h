@@ -15,9 +15,9 @@ void parallelFor(int count, int threads, const std::function<void(int)>& body);
 // For items of very different cost that a stage reports on while they run (progress.h): body(k) for k in [0, count)
 // on `threads` worker threads (0 = the hardware's), each taking the next item when it finishes one, while the calling
 // thread calls tick(done) every `period` seconds and once when all have stopped, `done` the items finished. Once tick
-// returns false it is not called again and no item is started; those running finish. An exception from an item also stops new items from
-// starting and is rethrown here after every worker has stopped (the first one thrown), and so is one from tick.
-// Returns whether every item ran. tick is only ever called from the calling thread.
+// returns false it is not called again and no item is started; those running finish. An exception from an item also
+// stops new items from starting and is rethrown here after every worker has stopped (the first one thrown), and so
+// is one from tick. Returns whether every item ran. tick is only ever called from the calling thread.
 bool parallelForTicking(int count, int threads, const std::function<void(int)>& body, double period,
                         const std::function<bool(int done)>& tick);
 

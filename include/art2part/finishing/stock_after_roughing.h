@@ -55,7 +55,8 @@ class StockAfterRoughing {
 
  private:
   const InProcessStock& model(int setup);
-  std::vector<Region> project(int setup, const SetupFrame& frame, const std::vector<std::pair<double, double>>& extents);
+  std::vector<Region> project(int setup, const SetupFrame& frame,
+                              const std::vector<std::pair<double, double>>& extents);
 
   const Part& part_;
   const Mesh& stock_;

@@ -35,7 +35,8 @@ struct PlanOptions {
   bool drop_useless = true;    // with verify: roughing operations the simulation finds removing almost nothing are
                                // left out when the plan without them verifies as clean (useless_operations.h)
   int resume_checkpoints = 8;  // with drop_useless: copies of the stock the first verification keeps, at setup
-                               // changes, for those without useless roughing to resume from (VerifyOptions::checkpoints)
+                               // changes, for the trials without useless roughing to resume from
+                               // (VerifyOptions::checkpoints)
   VerifyOptions verification;
 };
 
