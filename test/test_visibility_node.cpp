@@ -79,6 +79,7 @@ TEST(VisibilityNode, AnalysesALoadedPartAndSurvivesBadGoals) {
   ShowCone cone;
   cone.request.triangle = T + 5;
   cone.request.face = -1;
+  ASSERT_TRUE(ros::service::waitForService("show_cone", ros::Duration(30)));
   ASSERT_TRUE(ros::service::call("show_cone", cone));
   EXPECT_FALSE(cone.response.success);
   cone.request.triangle = 0;

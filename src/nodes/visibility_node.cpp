@@ -13,6 +13,7 @@
 
 #include <chrono>
 #include <cstring>
+#include <mutex>
 
 #include "node_main.h"
 #include "art2part/common/request_limits.h"
@@ -91,9 +92,12 @@ class VisibilityNode {
                        std::to_string(analysis->map.directions()) + " directions, " +
                        std::to_string(analysis->unseen_triangles.size()) + " triangles seen from nowhere";
       markers_pub_.publish(forPart(id, visibilityMarkers(*part, *analysis, frame_id_)));
-      last_part_ = part;
-      last_id_ = id;
-      last_ = analysis;
+      {
+        const std::lock_guard<std::mutex> lock(last_mutex_);
+        last_part_ = part;
+        last_id_ = id;
+        last_ = analysis;
+      }
       server_.setSucceeded(result);
       request.finish(RequestOutcome::Served, result.message);
     } catch (const std::exception& e) {
@@ -109,7 +113,10 @@ class VisibilityNode {
 
   bool showCone(ShowCone::Request& req, ShowCone::Response& res) {
     NodeDiagnostics::Request request = diagnostics_.request("show_cone");
-    coneOf(req, res);
+    {
+      const std::lock_guard<std::mutex> lock(last_mutex_);  // an analysis may be ending on the other thread
+      coneOf(req, res);
+    }
     request.finish(res.success ? RequestOutcome::Served : RequestOutcome::Refused, res.message);
     return true;
   }
@@ -158,6 +165,7 @@ class VisibilityNode {
   std::shared_ptr<const Part> last_part_;
   std::string last_id_;  // the part id of last_part_
   std::shared_ptr<const VisibilityResult> last_;
+  std::mutex last_mutex_;  // over last_part_, last_id_ and last_
 };
 
 }  // namespace art2part
