@@ -24,6 +24,7 @@
 #include "art2part/finishing/surface_finishing.h"
 #include "art2part/geometry/part.h"
 #include "art2part/roughing/roughing.h"
+#include "art2part/roughing/shadow.h"
 #include "art2part/setup/setup_plan.h"
 #include "art2part/tooling/tool.h"
 #include "art2part/tooling/toolpath.h"
@@ -134,9 +135,20 @@ struct FinishingInput {
 FinishingPlan planFinishing(const FinishingInput& input, const FinishingOptions& options = {},
                             const ProgressSink& progress = {});
 
-// What roughing left beyond `skin` (each slab's region eroded by the skin and a slack of 0.05 mm, slivers dropped),
-// slabs top down: the stock a finishing tool's shank, holder and links keep clear of, and planar finishing feeds
-// down through. Slabs left empty are left out.
-std::vector<SlabState> stockBeyondSkin(const std::vector<SlabState>& stock_left, double skin);
+// What roughing left beyond `skin` on the part, slabs top down: the stock a finishing tool's shank, holder and links
+// keep clear of, and planar finishing feeds down through. Each slab's region less the band within the skin and a
+// slack of 0.05 mm (the outlines' arcs) around the part's shadow over the slab (shadow.h: the part at and above the
+// slab's bottom), slivers under 0.02 mm dropped; slabs left empty are left out. Stock standing apart from the part
+// stays whole however thin. The band needs no keeping: a shank or tool column over it comes within the skin of the part, which
+// the part's own clearance (skin plus a margin) keeps it from. `frame_vertices`: the part's vertices in the slabs'
+// frame.
+std::vector<SlabState> stockBeyondSkin(const std::vector<SlabState>& stock_left, double skin,
+                                       const std::vector<Vec3>& frame_vertices, const std::vector<Triangle>& triangles);
+// The same with the part's shadows at the slabs' bottoms (slabShadows): one stack for several skins.
+std::vector<SlabState> stockBeyondSkin(const std::vector<SlabState>& stock_left, double skin,
+                                       const ShadowStack& shadows);
+// The part's shadows (`frame_vertices` in the slabs' frame) at the bottoms of `slabs`.
+ShadowStack slabShadows(const std::vector<SlabState>& slabs, const std::vector<Vec3>& frame_vertices,
+                        const std::vector<Triangle>& triangles);
 
 }  // namespace art2part

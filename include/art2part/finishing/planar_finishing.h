@@ -38,10 +38,10 @@ struct PlanarGroup {
   SetupFrame frame;                  // z: the tool direction
   std::vector<PlanarTarget> targets;
   Mesh stock;                        // the stock's mesh in the part frame (its box bounds where the tool goes)
-  // What roughing left in this frame (RoughingPlan::stock_left of the setup when the frame is the setup's), slabs top
-  // down; rapids come down only to the top of the highest slab whose stock lies within the tool's reach, and feed
-  // from there. Empty: nothing known beyond the allowance.
-  std::vector<SlabState> stock_left;
+  // What roughing left in this frame beyond the allowance (stockBeyondSkin, finishing.h, of RoughingPlan::stock_left
+  // of the setup when the frame is the setup's), slabs top down; rapids come down only to the top of the highest slab
+  // whose stock lies within the tool's reach, and feed from there. Empty: nothing known beyond the allowance.
+  std::vector<SlabState> stock_beyond;
 };
 
 // How much of a target the passes reach, by the planner's figures.

@@ -113,13 +113,13 @@ struct SurfaceFinishingResult {
 };
 
 // 3-axis finishing of `faces` (ids into part.faces) of a closed part from `frame.z` with a ball, bull or flat end mill.
-// `stock_left`: what roughing left in `frame` (RoughingPlan::stock_left of the setup when the frame is the setup's),
-// slabs top down; the shank, holder and links keep clear of it beyond the skin as of the part. Empty: nothing known
-// beyond the skin. Throws InputError for a tool that is not an end mill, an empty face list, a face id out of range or
-// options out of range.
+// `stock_beyond`: what roughing left in `frame` beyond the skin (stockBeyondSkin, finishing.h, of
+// RoughingPlan::stock_left of the setup when the frame is the setup's, with options.skin), slabs top down; the shank,
+// holder and links keep clear of it as of the part grown by the skin. Empty: nothing known beyond the skin. Throws
+// InputError for a tool that is not an end mill, an empty face list, a face id out of range or options out of range.
 SurfaceFinishingResult finishSurfaces3Axis(const Part& part, const std::vector<int>& faces, const SetupFrame& frame,
                                            const Tool& tool, int setup, const SurfaceFinishingOptions& options = {},
-                                           const std::vector<SlabState>& stock_left = {});
+                                           const std::vector<SlabState>& stock_beyond = {});
 
 // 5-axis finishing of `faces` with a ball end mill: centres from a drop along `face_direction` (unit, part frame), the
 // axis leaning from `frame.z` towards it (in their common plane) as the body needs, at most max_tilt_deg and never past

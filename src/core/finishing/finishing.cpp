@@ -6,7 +6,10 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <functional>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <sstream>
 #include <tuple>
 
@@ -18,6 +21,7 @@
 #include "art2part/finishing/planar_finishing.h"
 #include "art2part/finishing/stock_after_roughing.h"
 #include "art2part/geometry/solid_closure.h"
+#include "art2part/roughing/shadow.h"
 
 namespace art2part {
 
@@ -127,6 +131,39 @@ struct GroupOutcome {
   void note(int face, int choice, double share, const std::string& why) { notes.push_back({face, choice, share, why}); }
 };
 
+// What roughing left along a group's direction beyond the skins finishing leaves its tools (stockBeyondSkin): beyond
+// the allowance for planar finishing, beyond the surface skin for surface finishing.
+struct StockBeyond {
+  std::vector<SlabState> allowance, surface_skin;
+};
+
+// StockBeyond worked out once per setup and direction (the part's shadows at the slabs, the most of its work, once for
+// both): a group's planar and surface finishing, and the groups of later rounds along the same direction, ask for the
+// same. Threads may ask side by side; each answer is worked out once, by the first thread to ask for it.
+class StockBeyondCache {
+ public:
+  const StockBeyond& get(int setup, const Vec3& direction, const std::function<StockBeyond()>& work_out) {
+    std::shared_ptr<Entry> entry;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      std::shared_ptr<Entry>& slot = kept_[Key{setup, direction.x(), direction.y(), direction.z()}];
+      if (!slot) slot = std::make_shared<Entry>();
+      entry = slot;
+    }
+    std::call_once(entry->once, [&] { entry->stock = work_out(); });
+    return entry->stock;
+  }
+
+ private:
+  struct Entry {
+    std::once_flag once;
+    StockBeyond stock;
+  };
+  using Key = std::tuple<int, double, double, double>;
+  std::mutex mutex_;
+  std::map<Key, std::shared_ptr<Entry>> kept_;
+};
+
 // The context every group of a plan shares.
 struct Context {
   const FinishingInput& in;
@@ -137,6 +174,7 @@ struct Context {
   const std::vector<const Tool*>& balls;
   const std::vector<std::vector<int>>& triangles;
   StockAfterRoughing& after_roughing;  // the stock along directions that are no setup's own
+  StockBeyondCache& stock_beyond;
 };
 
 std::string number(double v) { return numberText(v, 3); }
@@ -179,6 +217,20 @@ std::vector<SlabState> stockLeftAlong(const Context& c, const Group& group) {
   return c.after_roughing.slabs(group.setup, frameFor(c.in.part, setup, group.direction));
 }
 
+double surfaceSkin(const FinishingOptions& options) { return std::max(options.surface.skin, options.allowance); }
+
+// What roughing left in the group's frame beyond the skins.
+const StockBeyond& stockBeyondAlong(const Context& c, const Group& group) {
+  return c.stock_beyond.get(group.setup, group.direction, [&] {
+    const std::vector<SlabState> left = stockLeftAlong(c, group);
+    if (left.empty()) return StockBeyond{};
+    const SetupFrame frame = frameFor(c.in.part, c.in.setups.setups[group.setup], group.direction);
+    const ShadowStack shadows = slabShadows(left, toFrame(c.solid.mesh.vertices, frame), c.solid.mesh.triangles);
+    return StockBeyond{stockBeyondSkin(left, c.options.allowance, shadows),
+                       stockBeyondSkin(left, surfaceSkin(c.options), shadows)};
+  });
+}
+
 void runPlanarGroup(const Context& c, const Group& group, const std::vector<int>& tried, GroupOutcome& out) {
   const Setup& setup = c.in.setups.setups[group.setup];
   PlanarGroup pg;
@@ -186,7 +238,7 @@ void runPlanarGroup(const Context& c, const Group& group, const std::vector<int>
   pg.frame = frameFor(c.in.part, setup, group.direction);
   pg.targets = group.planar;
   pg.stock = c.stock;
-  pg.stock_left = stockLeftAlong(c, group);
+  pg.stock_beyond = stockBeyondAlong(c, group).allowance;
   PlanarResult result = finishPlanar(c.solid, pg, c.flats, c.options);
   for (const PlanarReach& r : result.reach) {
     std::string why;
@@ -213,13 +265,13 @@ void runSurfaceGroup(const Context& c, const Group& group, const std::vector<int
   if (!ball && !c.balls.empty()) ball = c.balls.back();
   if (!ball) return;
   SurfaceFinishingOptions so = c.options.surface;
-  so.skin = std::max(so.skin, c.options.allowance);
+  so.skin = surfaceSkin(c.options);
   so.holder_margin = c.options.tools.holder_margin;
   const bool five = c.options.mode == MachineMode::FiveAxis;
   SurfaceFinishingResult r =
       five ? finishSurfaces5Axis(c.solid, group.surface, setup.frame, group.direction, *ball, group.setup, so)
            : finishSurfaces3Axis(c.solid, group.surface, frameFor(part, setup, group.direction), *ball, group.setup, so,
-                                 stockLeftAlong(c, group));
+                                 stockBeyondAlong(c, group).surface_skin);
   double area = 0;
   for (int f : group.surface) area += part.faces[f].area;
   const double share = area > 0 && !r.path.empty() ? std::clamp(r.planned_area_mm2 / area, 0.0, 1.0) : 0;
@@ -447,7 +499,8 @@ FinishingPlan planFinishing(const FinishingInput& in, const FinishingOptions& op
   const std::vector<std::vector<int>> triangles = faceTriangles(part);
   const Mesh stock = roughingStock(part, RoughingOptions{});
   StockAfterRoughing after_roughing(solid, stock, in.roughing, in.library);
-  const Context c{in, options, solid, stock, flats, balls, triangles, after_roughing};
+  StockBeyondCache stock_beyond;
+  const Context c{in, options, solid, stock, flats, balls, triangles, after_roughing, stock_beyond};
   const std::size_t faces = part.faces.size();
   Tally tally{std::vector<double>(faces, 0), std::vector<int>(faces, -1), std::vector<std::string>(faces)};
   std::vector<std::vector<FinishingOperation>> per_setup(in.setups.setups.size());

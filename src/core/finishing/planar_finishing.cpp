@@ -79,9 +79,9 @@ struct Wall {
 // Everything about the group that does not depend on the tool.
 struct GroupGeometry {
   std::vector<Vec3> vertices;  // the part in the frame
-  // What roughing left beyond its allowance (the slabs of PlanarGroup::stock_left eroded by the allowance and a
-  // margin: stairs on slanted faces, corners no roughing tool reached), slabs top down; and pointers to them as the
-  // forbidden region takes them. The skin of the allowance itself is kept off by the holder margin.
+  // What roughing left beyond its allowance (PlanarGroup::stock_beyond: stairs on slanted faces, corners no roughing
+  // tool reached, stock standing free), slabs top down; and pointers to them as the forbidden region takes them. The
+  // skin of the allowance itself is kept off by the holder margin.
   std::shared_ptr<const std::vector<SlabState>> thick;  // shared by the copies a tool's trial makes
   Box stock;                   // the stock's box in the frame
   std::vector<Floor> floors;
@@ -115,21 +115,41 @@ std::vector<Point2> traceSamples(const std::vector<Vec3>& vertices, const Mesh& 
 
 }  // namespace
 
-std::vector<SlabState> stockBeyondSkin(const std::vector<SlabState>& stock_left, double skin) {
+ShadowStack slabShadows(const std::vector<SlabState>& slabs, const std::vector<Vec3>& frame_vertices,
+                        const std::vector<Triangle>& triangles) {
+  std::vector<double> heights;
+  for (const SlabState& slab : slabs) heights.push_back(slab.z);
+  return ShadowStack(frame_vertices, triangles, heights);
+}
+
+std::vector<SlabState> stockBeyondSkin(const std::vector<SlabState>& stock_left, double skin,
+                                       const ShadowStack& shadows) {
   std::vector<SlabState> thick;
+  Region grown;  // the shadow grown by the skin and slack, from the gains of the heights so far (top down)
+  int done = -1;
   for (const SlabState& slab : stock_left) {
-    Region left = dropThinPieces(offsetRegion(slab.remaining, -(skin + kSkinSlack)), kThinLeft);
+    const int index = shadows.indexAt(slab.z);
+    for (; done < index; ++done) grown = unite(grown, offsetRegion(shadows.gain(done + 1), skin + kSkinSlack));
+    const Region band = index < 0 ? Region{} : subtract(grown, shadows.at(slab.z));
+    Region left = dropThinPieces(subtract(slab.remaining, band), kThinLeft);
     if (!regionEmpty(left)) thick.push_back({slab.z, slab.top, std::move(left)});
   }
   return thick;
 }
 
+std::vector<SlabState> stockBeyondSkin(const std::vector<SlabState>& stock_left, double skin,
+                                       const std::vector<Vec3>& frame_vertices,
+                                       const std::vector<Triangle>& triangles) {
+  if (stock_left.empty()) return {};
+  return stockBeyondSkin(stock_left, skin, slabShadows(stock_left, frame_vertices, triangles));
+}
+
 namespace {
 
-GroupGeometry groupGeometry(const Part& part, const PlanarGroup& group, double allowance) {
+GroupGeometry groupGeometry(const Part& part, const PlanarGroup& group) {
   GroupGeometry g;
   g.vertices = toFrame(part.mesh.vertices, group.frame);
-  g.thick = std::make_shared<const std::vector<SlabState>>(stockBeyondSkin(group.stock_left, allowance));
+  g.thick = std::make_shared<const std::vector<SlabState>>(group.stock_beyond);
   for (const Vec3& p : toFrame(group.stock.vertices, group.frame)) g.stock.extend(p);
   for (int t = 0; t < part.mesh.triangleCount() && t < static_cast<int>(part.triangle_face.size()); ++t)
     g.triangles_of[part.triangle_face[t]].push_back(t);
@@ -472,7 +492,7 @@ PlanarResult finishPlanar(const Part& part, const PlanarGroup& group, const std:
     if (t->type != ToolType::Flat)
       throw InputError("planar finishing: tool '" + t->id + "' is a " + toolTypeName(t->type) + ", not a flat end mill");
   PlanarResult result;
-  const GroupGeometry base = groupGeometry(part, group, options.allowance);
+  const GroupGeometry base = groupGeometry(part, group);
   result.reach.resize(group.targets.size());
   for (int i = 0; i < static_cast<int>(group.targets.size()); ++i) result.reach[i].face = group.targets[i].face;
   for (const Floor& f : base.floors) result.reach[f.target].size = regionArea(f.left);

@@ -121,10 +121,10 @@ void checkOptions(const SurfaceFinishingOptions& o) {
 
 SurfaceFinishingResult finishSurfaces3Axis(const Part& part, const std::vector<int>& faces, const SetupFrame& frame,
                                            const Tool& tool, int setup, const SurfaceFinishingOptions& options,
-                                           const std::vector<SlabState>& stock_left) {
+                                           const std::vector<SlabState>& stock_beyond) {
   const auto start = std::chrono::steady_clock::now();
   SurfaceFinishingResult result;
-  surface::Plan plan = surface::planPasses(part, faces, frame, tool, options, true, stock_left, result);
+  surface::Plan plan = surface::planPasses(part, faces, frame, tool, options, true, stock_beyond, result);
   if (!plan.ordered.passes.empty()) {
     const surface::Linked linked = surface::link3Axis(*plan.ctx, plan.ordered.passes, plan.short_link,
                                                       options.link_margin, plan.clearance_z);

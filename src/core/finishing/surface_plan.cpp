@@ -320,7 +320,7 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 }  // namespace
 
 Plan planPasses(const Part& part, const std::vector<int>& faces_in, const SetupFrame& frame, const Tool& tool,
-                const SurfaceFinishingOptions& o, bool body, const std::vector<SlabState>& stock_left,
+                const SurfaceFinishingOptions& o, bool body, const std::vector<SlabState>& stock_beyond,
                 SurfaceFinishingResult& result) {
   const auto start = std::chrono::steady_clock::now();
   checkTool(tool);
@@ -392,9 +392,8 @@ Plan planPasses(const Part& part, const std::vector<int>& faces_in, const SetupF
     const Grid coarse = gridOver(window, kClearancePitchFactor * pitch);
     ctx.body = clearanceMap(v, tris, coarse, bodyZones(tool, o.skin + o.holder_margin), ctx.threads, ctx.drops);
     ctx.safe = clearanceMap(v, tris, coarse, {Zone{R, 0, o.skin}}, ctx.threads, ctx.drops);
-    const std::vector<SlabState> stock = stockBeyondSkin(stock_left, o.skin);
-    raiseOverStock(ctx.body, stock, bodyZones(tool, o.holder_margin));
-    raiseOverStock(ctx.safe, stock, {Zone{R, 0, 0}});
+    raiseOverStock(ctx.body, stock_beyond, bodyZones(tool, o.holder_margin));
+    raiseOverStock(ctx.safe, stock_beyond, {Zone{R, 0, 0}});
     for (std::size_t n = 0; n < ctx.safe.tip.size(); ++n) ctx.safe.tip[n] = std::max(ctx.safe.tip[n], ctx.body.tip[n]);
   }
   const Spacings spacings{part, v, faceConcaveRadii(part), R, r, spacing, o.scallop - ctx.leave_tolerance,

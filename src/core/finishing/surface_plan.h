@@ -24,10 +24,11 @@ struct Plan {
 
 // Plans the passes of `faces` from `frame.z` (checks the tool, faces and options; fills the result's stepover, height
 // step, radius, areas, counts and seconds_map). `body`: keep the shank and holder clear by the clearance maps (3-axis),
-// of the part grown by the skin and of `stock_left` (roughing's slabs in `frame`, top down; may be empty) beyond it;
+// of the part grown by the skin and of `stock_beyond` (what roughing left in `frame` beyond the skin, top down; may be
+// empty);
 // without it cut points are not checked for the body and no clearance maps are made (5-axis tilts instead).
 Plan planPasses(const Part& part, const std::vector<int>& faces, const SetupFrame& frame, const Tool& tool,
-                const SurfaceFinishingOptions& options, bool body, const std::vector<SlabState>& stock_left,
+                const SurfaceFinishingOptions& options, bool body, const std::vector<SlabState>& stock_beyond,
                 SurfaceFinishingResult& result);
 
 // Per face of the part, its B-rep radius of curvature where it may be concave (spheres, cylinders, cones, tori);
