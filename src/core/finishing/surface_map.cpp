@@ -3,18 +3,9 @@
 #include <cmath>
 #include <map>
 
-#include "art2part/roughing/forbidden_region.h"
 #include "surface_passes.h"
 
 namespace art2part::surface {
-
-int Grid::nearestI(double x) const {
-  return std::clamp(static_cast<int>(std::lround((x - x0) / pitch)), 0, nx - 1);
-}
-
-int Grid::nearestJ(double y) const {
-  return std::clamp(static_cast<int>(std::lround((y - y0) / pitch)), 0, ny - 1);
-}
 
 Grid gridOver(const Box& box, double pitch) {
   if (!(pitch > 0)) throw InputError("surface finishing: grid pitch must be positive");
@@ -69,18 +60,30 @@ ClearanceMap clearanceMap(const std::vector<Vec3>& vertices, const std::vector<T
   ClearanceMap map;
   map.grid = grid;
   map.tip.assign(grid.size(), -kInf);
-  // One flat drop-cutter per distinct radius (zones of one radius differ in height or growth only).
+  // One flat drop-cutter per distinct radius (zones of one radius differ in height or growth only), over the
+  // triangles within its radius of the grid: the others cannot meet it at any node (a small group's map on a large
+  // part skips most of the mesh).
   std::map<double, std::shared_ptr<DropCutter>> cutters;
   for (const Zone& z : zones) {
     const double radius = z.radius + z.grow + grid.pitch;
     if (cutters.count(radius)) continue;
+    const double x_lo = grid.x(0) - radius, x_hi = grid.x(grid.nx - 1) + radius;
+    const double y_lo = grid.y(0) - radius, y_hi = grid.y(grid.ny - 1) + radius;
+    std::vector<Triangle> near;
+    for (const Triangle& t : triangles) {
+      const Vec3 &a = vertices[t[0]], &b = vertices[t[1]], &c = vertices[t[2]];
+      if (std::max({a.x(), b.x(), c.x()}) < x_lo || std::min({a.x(), b.x(), c.x()}) > x_hi ||
+          std::max({a.y(), b.y(), c.y()}) < y_lo || std::min({a.y(), b.y(), c.y()}) > y_hi)
+        continue;
+      near.push_back(t);
+    }
     Tool flat;
     flat.id = "zone";
     flat.type = ToolType::Flat;
     flat.diameter = 2 * radius;
     flat.flute_length = flat.stickout = 1;
     flat.shank_diameter = flat.diameter;
-    cutters[radius] = std::make_shared<DropCutter>(vertices, triangles, flat);
+    cutters[radius] = std::make_shared<DropCutter>(vertices, near, flat);
   }
   parallelFor(grid.ny, threads, [&](int j) {
     long count = 0;
@@ -98,52 +101,16 @@ ClearanceMap clearanceMap(const std::vector<Vec3>& vertices, const std::vector<T
   return map;
 }
 
-namespace {
-
-// Calls `fill(node)` for every node of the grid inside the region (even-odd over its rings: Clipper's regions are
-// unions, so that is their winding rule too), row by row from the crossings of the rings' edges.
-void forNodesInside(const Grid& grid, const Region& region, const std::function<void(int)>& fill) {
-  std::vector<std::vector<double>> crossings(grid.ny);
-  for (const ClipperLib::Path& ring : region)
-    for (std::size_t k = 0; k < ring.size(); ++k) {
-      const Point2 a = fromRegionPoint(ring[k]), b = fromRegionPoint(ring[(k + 1) % ring.size()]);
-      if (a.y() == b.y()) continue;
-      const double lo = std::min(a.y(), b.y()), hi = std::max(a.y(), b.y());
-      // Rows with lo <= y < hi: each crossing counted once where two edges meet at a vertex.
-      const int first = std::max(0, static_cast<int>(std::ceil((lo - grid.y0) / grid.pitch)));
-      const int last = std::min(grid.ny - 1, static_cast<int>(std::ceil((hi - grid.y0) / grid.pitch)) - 1);
-      for (int j = first; j <= last; ++j) {
-        const double y = grid.y(j);
-        if (y < lo || y >= hi) continue;
-        crossings[j].push_back(a.x() + (y - a.y()) * (b.x() - a.x()) / (b.y() - a.y()));
-      }
-    }
-  for (int j = 0; j < grid.ny; ++j) {
-    std::vector<double>& xs = crossings[j];
-    std::sort(xs.begin(), xs.end());
-    for (std::size_t k = 0; k + 1 < xs.size(); k += 2) {
-      const int from = std::max(0, static_cast<int>(std::ceil((xs[k] - grid.x0) / grid.pitch)));
-      const int to = std::min(grid.nx - 1, static_cast<int>(std::floor((xs[k + 1] - grid.x0) / grid.pitch)));
-      for (int i = from; i <= to; ++i) fill(grid.node(i, j));
-    }
-  }
-}
-
-}  // namespace
-
 void raiseOverStock(ClearanceMap& map, const std::vector<SlabState>& stock, const std::vector<Zone>& zones) {
-  if (map.tip.empty()) return;
-  Region counted;
-  for (const SlabState& slab : stock) {
-    const Region gain = subtract(slab.remaining, counted);
-    counted = unite(counted, slab.remaining);
-    if (regionEmpty(gain)) continue;
-    for (const Zone& zone : zones) {
-      const double tip = slab.top + zone.grow - zone.height;
-      forNodesInside(map.grid, growForBody(gain, zone.radius + zone.grow + map.grid.pitch),
-                     [&](int n) { map.tip[n] = std::max(map.tip[n], tip); });
-    }
-  }
+  if (map.tip.empty() || stock.empty()) return;
+  std::vector<RegionAtHeight> levels;
+  for (const SlabState& slab : stock) levels.push_back({&slab.remaining, slab.top});
+  std::vector<double> radii;
+  for (const Zone& zone : zones) radii.push_back(zone.radius + zone.grow + map.grid.pitch);
+  const std::vector<std::vector<double>> near = highestNear(map.grid, levels, radii, kStockCell);
+  for (std::size_t z = 0; z < zones.size(); ++z)
+    for (std::size_t n = 0; n < map.tip.size(); ++n)
+      map.tip[n] = std::max(map.tip[n], near[z][n] + zones[z].grow - zones[z].height);
 }
 
 void refineInterval(const Context& ctx, const Vec3& a, const Vec3& b, std::vector<Vec3>& out) {

@@ -12,6 +12,7 @@
 
 #include "art2part/common/parallel.h"
 #include "art2part/finishing/drop_cutter.h"
+#include "art2part/finishing/region_raster.h"
 #include "art2part/finishing/surface_finishing.h"
 #include "art2part/geometry/part.h"
 #include "art2part/roughing/roughing.h"
@@ -20,18 +21,7 @@ namespace art2part::surface {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// A regular x-y grid: node (i, j) at (x0 + i pitch, y0 + j pitch).
-struct Grid {
-  double x0 = 0, y0 = 0, pitch = 1;
-  int nx = 0, ny = 0;
-  double x(int i) const { return x0 + i * pitch; }
-  double y(int j) const { return y0 + j * pitch; }
-  int node(int i, int j) const { return j * nx + i; }
-  std::size_t size() const { return static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny); }
-  int nearestI(double x) const;  // clamped into the grid
-  int nearestJ(double y) const;
-  int nearest(double x, double y) const { return node(nearestI(x), nearestJ(y)); }
-};
+using Grid = NodeGrid;  // region_raster.h
 // Nodes `pitch` apart over the x-y extent of `box`. Throws InputError past kMaxGridNodes (a pitch far too fine).
 Grid gridOver(const Box& box, double pitch);
 constexpr double kMaxGridNodes = 64e6;
@@ -61,8 +51,9 @@ ClearanceMap clearanceMap(const std::vector<Vec3>& vertices, const std::vector<T
 
 // Raises the map where the zones meet stock: at every node within a zone's radius + grow + the grid's pitch of a
 // slab's region, the tip at least the slab's top + grow - the zone's height (the slab's material may reach its top
-// anywhere in its region). `stock`: slabs top down in the map's frame, regions in mm as roughing's (region.h). Only
-// what a slab adds to the slabs above it is rasterised (a higher slab over the same ground asks for more).
+// anywhere in its region); a node up to kStockCell sqrt 2 farther may be raised too (highestNear grows the regions on
+// cells of at most kStockCell). `stock`: slabs in the map's frame, regions in mm as roughing's (region.h).
+constexpr double kStockCell = 0.125;  // mm
 void raiseOverStock(ClearanceMap& map, const std::vector<SlabState>& stock, const std::vector<Zone>& zones);
 
 // What the passes need: the drop-cutter, the CL map with its regions, the clearance maps, tolerances.
