@@ -107,7 +107,10 @@ void raiseOverStock(ClearanceMap& map, const std::vector<SlabState>& stock, cons
   for (const SlabState& slab : stock) levels.push_back({&slab.remaining, slab.top});
   std::vector<double> radii;
   for (const Zone& zone : zones) radii.push_back(zone.radius + zone.grow + map.grid.pitch);
-  const std::vector<std::vector<double>> near = highestNear(map.grid, levels, radii, kStockCell);
+  const double per_pitch = std::clamp(std::floor(std::sqrt(kStockCells / static_cast<double>(map.grid.size()))), 1.0,
+                                      kStockCellsPerPitch);
+  const std::vector<std::vector<double>> near =
+      highestNear(map.grid, levels, radii, std::max(kStockCell, map.grid.pitch / per_pitch));
   for (std::size_t z = 0; z < zones.size(); ++z)
     for (std::size_t n = 0; n < map.tip.size(); ++n)
       map.tip[n] = std::max(map.tip[n], near[z][n] + zones[z].grow - zones[z].height);

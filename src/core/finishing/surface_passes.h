@@ -51,9 +51,14 @@ ClearanceMap clearanceMap(const std::vector<Vec3>& vertices, const std::vector<T
 
 // Raises the map where the zones meet stock: at every node within a zone's radius + grow + the grid's pitch of a
 // slab's region, the tip at least the slab's top + grow - the zone's height (the slab's material may reach its top
-// anywhere in its region); a node up to kStockCell sqrt 2 farther may be raised too (highestNear grows the regions on
-// cells of at most kStockCell). `stock`: slabs in the map's frame, regions in mm as roughing's (region.h).
+// anywhere in its region); a node a little farther may be raised too: highestNear grows the regions on cells of
+// kStockCell, or coarser where that would cut the map's pitch into more than kStockCellsPerPitch or the map into more
+// than kStockCells (the cost grows as their square and with the cells), so by at most the cell's diagonal (the map
+// grows every zone by its pitch anyway). `stock`: slabs in the map's frame, regions
+// in mm as roughing's (region.h).
 constexpr double kStockCell = 0.125;  // mm
+constexpr double kStockCells = 1e6;
+constexpr double kStockCellsPerPitch = 8;
 void raiseOverStock(ClearanceMap& map, const std::vector<SlabState>& stock, const std::vector<Zone>& zones);
 
 // What the passes need: the drop-cutter, the CL map with its regions, the clearance maps, tolerances.
