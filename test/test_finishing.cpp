@@ -2,10 +2,13 @@
 // judged by the simulation, every face accounted for.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "art2part/finishing/admissible.h"
 #include "art2part/finishing/face_assignment.h"
+#include "art2part/finishing/finishing.h"
 #include "art2part/finishing/planar_finishing.h"
 #include "art2part/simulation/verify.h"
 #include "test_solids.h"
@@ -221,4 +224,101 @@ TEST(PlanarFinishing, FinishesAPocketedBlockFromAboveToItsNominalFaces) {
       EXPECT_LE(r.max_thickness_mm, 0.01) << "leftover at " << r.thickest_point.transpose();
     }
   }
+}
+
+// Links between wall stretches stay down where the stock left proves the way clear, instead of climbing to the
+// clearance plane every time: the pocketed block with the 0.3 mm stock roughing leaves given as slabs, every link
+// checked by the simulation against that stock.
+TEST(PlanarFinishing, LinksStayDownWhereTheStockLeftProvesTheWayClear) {
+  const Part part = pocketedBlock();
+  LoadOptions fine;
+  fine.chordal_tolerance = 0.002;
+  fine.angular_tolerance = 0.05;
+  const ToolLibrary library = loadToolLibrary(kTools);
+  std::vector<const Tool*> flats;
+  for (const Tool& t : library.tools)
+    if (t.type == ToolType::Flat) flats.push_back(&t);
+  std::stable_sort(flats.begin(), flats.end(), [](const Tool* a, const Tool* b) {
+    return a->diameter != b->diameter ? a->diameter > b->diameter : a->flute_length < b->flute_length;
+  });
+  PlanarGroup group;
+  group.frame = setupFrame(part, Vec3::UnitZ());
+  group.stock = test::box(Vec3(-2, -2, -2), Vec3(62, 42, 22));
+  for (int f = 0; f < static_cast<int>(part.faces.size()); ++f) {
+    const Face& face = part.faces[f];
+    if (face.type == SurfaceType::Plane && std::abs(face.normal.z()) < 1e-9 && face.area < 30 * 8 + 1)
+      group.targets.push_back({f, FinishingKind::SideMill});
+    else if (face.type == SurfaceType::Cylinder)
+      group.targets.push_back({f, FinishingKind::Contour});
+  }
+  ASSERT_EQ(group.targets.size(), 8u) << "4 walls, 4 corners";
+  const double skin = 0.3;
+  const Part stock = test::stepPart(test::pocketedBlock(Vec3(-2, -2, 0), Vec3(62, 42, 20 + skin), 30 - 2 * skin,
+                                                        20 - 2 * skin, 8, 4 - skin),
+                                    "pocket_stock", fine);
+  const Toolpath blind = [&] {
+    Toolpath path;
+    for (const FinishingOperation& op : finishPlanar(part, group, flats, FinishingOptions{}).operations)
+      path.insert(path.end(), op.path.begin(), op.path.end());
+    return path;
+  }();
+  // The stock as slabs 1 mm deep from its top: the block, less the pocket (its corners' arcs by inscribed chords: a
+  // hole a hair smaller than the stock's) where the slab lies above the pocket's floor; then beyond the allowance,
+  // as finishing takes it.
+  const double floor = 20 + skin - 8, corner = 4 - skin;
+  // Drawn in the part's coordinates, taken into the group's frame.
+  const SetupFrame& frame = group.frame;
+  ASSERT_NEAR(frame.z.z(), 1, 1e-12);
+  const auto in_frame = [&](const Ring& ring) {
+    Ring out;
+    for (const Point2& p : ring) {
+      const Vec3 d = Vec3(p.x(), p.y(), 0) - frame.origin;
+      out.emplace_back(d.dot(frame.x), d.dot(frame.y));
+    }
+    return out;
+  };
+  const Point2 lo(15 + skin, 10 + skin), hi(45 - skin, 30 - skin);
+  Ring pocket;
+  const Point2 centres[4] = {Point2(hi.x() - corner, lo.y() + corner), Point2(hi.x() - corner, hi.y() - corner),
+                             Point2(lo.x() + corner, hi.y() - corner), Point2(lo.x() + corner, lo.y() + corner)};
+  for (int c = 0; c < 4; ++c)
+    for (int k = 0; k <= 16; ++k) {
+      const double a = kPi / 2 * (c - 1) + kPi / 2 * k / 16;
+      pocket.push_back(centres[c] + corner * Point2(std::cos(a), std::sin(a)));
+    }
+  const Region block = regionFromPolygons({in_frame({Point2(-2, -2), Point2(62, -2), Point2(62, 42), Point2(-2, 42)})});
+  const Region hole = regionFromPolygons({in_frame(pocket)});
+  std::vector<SlabState> stock_left;
+  for (double top = 20 + skin; top > 1e-9; top -= 1) {
+    const double z = std::max(0.0, top - 1);
+    stock_left.push_back(
+        {z - frame.origin.z(), top - frame.origin.z(), z >= floor - 1e-9 ? subtract(block, hole) : block});
+  }
+  group.stock_beyond =
+      stockBeyondSkin(stock_left, FinishingOptions{}.allowance, toFrame(part.mesh.vertices, group.frame),
+                      part.mesh.triangles);
+  const PlanarResult result = finishPlanar(part, group, flats, FinishingOptions{});
+  Toolpath path;
+  std::vector<Tool> tools;
+  for (const FinishingOperation& op : result.operations) {
+    path.insert(path.end(), op.path.begin(), op.path.end());
+    if (std::none_of(tools.begin(), tools.end(), [&](const Tool& t) { return t.id == op.tool; }))
+      tools.push_back(*library.find(op.tool));
+  }
+  ASSERT_FALSE(path.empty()) << result.operations.size() << " operations";
+  int low_links = 0;  // rapids across below the stock's top
+  for (std::size_t i = 1; i < path.size(); ++i)
+    low_links += path[i].move == MoveKind::Rapid && path[i].tip.z() < 20 + skin &&
+                 (path[i].tip - path[i - 1].tip).head<2>().norm() > 1e-3;
+  const double rapid = toolpathLength(path, MoveKind::Rapid), blind_rapid = toolpathLength(blind, MoveKind::Rapid);
+  std::printf("rapids: %.0f mm with the stock left (%d across below its top), %.0f mm without; cutting %.0f mm\n",
+              rapid, low_links, blind_rapid, toolpathLength(path, MoveKind::Feed));
+  EXPECT_GT(low_links, 0);
+  EXPECT_LT(rapid, 0.8 * blind_rapid);
+  VerifyOptions verify;
+  verify.resolution = 0.1;
+  verify.stock_mesh = &stock.mesh;
+  const VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, path, tools, verify);
+  EXPECT_EQ(report.gouges, 0) << report.worst_gouge_mm;
+  EXPECT_EQ(report.collisions, 0) << report.worst_collision_mm;
 }

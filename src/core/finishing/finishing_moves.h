@@ -14,11 +14,36 @@
 namespace art2part::finishing_detail {
 
 constexpr double kSafeHeight = 1.0;  // mm above the allowance where a descent changes from rapid to feed
+constexpr double kLinkClearance = 1.0;  // mm a link across keeps from the stock left, beyond the allowance
+
+// The lowest height at which the tool may move straight across from one point to another: every zone of it (the
+// cutter, the shank, the holder's steps: radius and height above the tip) clear by `margin` sideways and `margin` in
+// height of the stock left (slabs top down, the part's section included, as finishing's stock beyond the skin: the
+// margin covers the skin it leaves out). Nothing is known below the lowest slab: a move never goes lower than its
+// bottom; with no slabs there is no way across but the clearance plane (infinity). Finishing only takes material away,
+// so stock left before it bounds what is there at any point of it.
+class LinkHeight {
+ public:
+  struct Zone {
+    double radius = 0, above_tip = 0;
+  };
+  LinkHeight() = default;
+  LinkHeight(const std::vector<SlabState>& slabs, std::vector<Zone> zones, double margin)
+      : slabs_(&slabs), zones_(std::move(zones)), margin_(margin) {}
+  double across(const Point2& a, const Point2& b) const;
+
+ private:
+  const std::vector<SlabState>* slabs_ = nullptr;
+  std::vector<Zone> zones_;
+  double margin_ = 0;
+};
+// The zones of a tool for LinkHeight: the cutter with its flutes, the shank, the holder's steps.
+std::vector<LinkHeight::Zone> linkZones(const Tool& tool);
 
 class PathWriter {
  public:
-  PathWriter(const SetupFrame& frame, const Tool& tool, int setup, double clearance_z)
-      : frame_(frame), tool_(tool), setup_(setup), clearance_z_(clearance_z) {}
+  PathWriter(const SetupFrame& frame, const Tool& tool, int setup, double clearance_z, LinkHeight link = {})
+      : frame_(frame), tool_(tool), setup_(setup), clearance_z_(clearance_z), link_(std::move(link)) {}
 
   void move(const Vec3& p, MoveKind kind) {
     CutterLocation cl;
@@ -35,12 +60,20 @@ class PathWriter {
   void clearing(const std::vector<ClearingPoint>& moves) {
     for (const ClearingPoint& m : moves) move(m.tip, m.move == ClearingMove::Rapid ? MoveKind::Rapid : MoveKind::Feed);
   }
-  // To (x, y) at height z from wherever the tool is: up to the clearance plane, across, down fast to `safe` (or only
-  // to `floor` when that is higher), then feed.
+  // To (x, y) at height z from wherever the tool is: up to the height the link proves clear (or the clearance plane),
+  // across, down fast to `safe` (or only to `floor` when that is higher), then feed.
   void enter(const Point2& xy, double z, double safe, double floor) {
+    const double fast = std::max(safe, floor);
+    const double way = started_ ? std::max(link_.across(at_.head<2>(), xy), at_.z()) : clearance_z_;
+    if (way < clearance_z_ - 1e-9) {
+      move(Vec3(at_.x(), at_.y(), way), MoveKind::Rapid);
+      move(Vec3(xy.x(), xy.y(), way), MoveKind::Rapid);
+      if (fast < way) move(Vec3(xy.x(), xy.y(), fast), MoveKind::Rapid);
+      move(Vec3(xy.x(), xy.y(), z), MoveKind::Feed);
+      return;
+    }
     if (started_ && at_.z() < clearance_z_ - 1e-9) move(Vec3(at_.x(), at_.y(), clearance_z_), MoveKind::Rapid);
     move(Vec3(xy.x(), xy.y(), clearance_z_), MoveKind::Rapid);
-    const double fast = std::max(safe, floor);
     if (fast < clearance_z_) move(Vec3(xy.x(), xy.y(), fast), MoveKind::Rapid);
     move(Vec3(xy.x(), xy.y(), z), MoveKind::Feed);
   }
@@ -58,6 +91,7 @@ class PathWriter {
   const Tool& tool_;
   int setup_;
   double clearance_z_;
+  LinkHeight link_;
   Toolpath path_;
   Vec3 at_ = Vec3::Zero();
   bool started_ = false;

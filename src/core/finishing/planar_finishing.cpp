@@ -288,7 +288,11 @@ ToolRun runTool(const PlanarGroup& group, GroupGeometry& g, const ShadowStack& s
                                                Point2(outline.max.x() + r + 1, outline.max.y() + r + 1),
                                                Point2(outline.min.x() - r - 1, outline.max.y() + r + 1)}});
   const double clearance_z = g.stock.max.z() + options.clearance;
-  PathWriter floor_path(group.frame, tool, group.setup, clearance_z), wall_path(group.frame, tool, group.setup, clearance_z);
+  // Links between wall stretches stay down where the stock left proves the way clear (the margin covers the skin the
+  // stock beyond it leaves out, and a clearance).
+  const LinkHeight link(*g.thick, linkZones(tool), options.allowance + kLinkClearance);
+  PathWriter floor_path(group.frame, tool, group.setup, clearance_z);
+  PathWriter wall_path(group.frame, tool, group.setup, clearance_z, link);
   ClearingOptions clearing;
   clearing.stepover = std::min(options.planar.floor_stepover, 0.9) * tool.diameter;
   clearing.clearance_z = clearance_z;
