@@ -53,6 +53,25 @@ Part pocketedBlock() {
   return part;
 }
 
+// The library's flat end mills, largest first (shortest flutes first among equals), as finishing tries them.
+std::vector<const Tool*> flatsLargestFirst(const ToolLibrary& library) {
+  std::vector<const Tool*> flats;
+  for (const Tool& t : library.tools)
+    if (t.type == ToolType::Flat) flats.push_back(&t);
+  std::stable_sort(flats.begin(), flats.end(), [](const Tool* a, const Tool* b) {
+    return a->diameter != b->diameter ? a->diameter > b->diameter : a->flute_length < b->flute_length;
+  });
+  return flats;
+}
+
+// A planar group finishing the pocketed block from above, in a 2 mm stock box, no targets yet.
+PlanarGroup fromAbove(const Part& part) {
+  PlanarGroup group;
+  group.frame = setupFrame(part, Vec3::UnitZ());
+  group.stock = test::box(Vec3(-2, -2, -2), Vec3(62, 42, 22));
+  return group;
+}
+
 }  // namespace
 
 TEST(Admissible, PlaneFaceMillsAlongItsNormalAndSideMillsInItsPlane) {
@@ -160,15 +179,8 @@ TEST(PlanarFinishing, FinishesAPocketedBlockFromAboveToItsNominalFaces) {
   fine.chordal_tolerance = 0.002;
   fine.angular_tolerance = 0.05;
   const ToolLibrary library = loadToolLibrary(kTools);
-  std::vector<const Tool*> flats;
-  for (const Tool& t : library.tools)
-    if (t.type == ToolType::Flat) flats.push_back(&t);
-  std::stable_sort(flats.begin(), flats.end(), [](const Tool* a, const Tool* b) {
-    return a->diameter != b->diameter ? a->diameter > b->diameter : a->flute_length < b->flute_length;
-  });
-  PlanarGroup group;
-  group.frame = setupFrame(part, Vec3::UnitZ());
-  group.stock = test::box(Vec3(-2, -2, -2), Vec3(62, 42, 22));
+  const std::vector<const Tool*> flats = flatsLargestFirst(library);
+  PlanarGroup group = fromAbove(part);
   std::vector<int> targets;
   for (int f = 0; f < static_cast<int>(part.faces.size()); ++f) {
     const Face& face = part.faces[f];
@@ -235,15 +247,8 @@ TEST(PlanarFinishing, LinksStayDownWhereTheStockLeftProvesTheWayClear) {
   fine.chordal_tolerance = 0.002;
   fine.angular_tolerance = 0.05;
   const ToolLibrary library = loadToolLibrary(kTools);
-  std::vector<const Tool*> flats;
-  for (const Tool& t : library.tools)
-    if (t.type == ToolType::Flat) flats.push_back(&t);
-  std::stable_sort(flats.begin(), flats.end(), [](const Tool* a, const Tool* b) {
-    return a->diameter != b->diameter ? a->diameter > b->diameter : a->flute_length < b->flute_length;
-  });
-  PlanarGroup group;
-  group.frame = setupFrame(part, Vec3::UnitZ());
-  group.stock = test::box(Vec3(-2, -2, -2), Vec3(62, 42, 22));
+  const std::vector<const Tool*> flats = flatsLargestFirst(library);
+  PlanarGroup group = fromAbove(part);
   for (int f = 0; f < static_cast<int>(part.faces.size()); ++f) {
     const Face& face = part.faces[f];
     if (face.type == SurfaceType::Plane && std::abs(face.normal.z()) < 1e-9 && face.area < 30 * 8 + 1)
