@@ -41,16 +41,44 @@ const AdmissibleSet& setOf(const std::vector<AdmissibleSet>& sets, FinishingKind
   throw std::runtime_error("no such set");
 }
 
+// Tessellated finely: the simulation judges against the mesh, and a round tool leaves R e / r in the corners of a
+// polygon of chordal error e approximating an arc of radius r.
+LoadOptions fine() {
+  LoadOptions o;
+  o.chordal_tolerance = 0.002;
+  o.angular_tolerance = 0.05;
+  return o;
+}
+
 // A 60 x 40 x 20 block with a 30 x 20 x 8 pocket, corners rounded to 4 mm.
 Part pocketedBlock() {
-  // Tessellated finely: the simulation judges against the mesh, and a round tool leaves R e / r in the corners of a
-  // polygon of chordal error e approximating an arc of radius r.
-  LoadOptions fine;
-  fine.chordal_tolerance = 0.002;
-  fine.angular_tolerance = 0.05;
   static const Part part =
-      test::stepPart(test::pocketedBlock(Vec3(0, 0, 0), Vec3(60, 40, 20), 30, 20, 8, 4), "pocket", fine);
+      test::stepPart(test::pocketedBlock(Vec3(0, 0, 0), Vec3(60, 40, 20), 30, 20, 8, 4), "pocket", fine());
   return part;
+}
+
+// The stock roughing leaves on it: 0.3 mm on every face finished from above, the block's 2 mm beyond its sides.
+constexpr double kSkin = 0.3;
+const Part& pocketStock() {
+  static const Part stock = test::stepPart(test::pocketedBlock(Vec3(-2, -2, 0), Vec3(62, 42, 20 + kSkin),
+                                                               30 - 2 * kSkin, 20 - 2 * kSkin, 8, 4 - kSkin),
+                                           "pocket_stock", fine());
+  return stock;
+}
+
+// The operations' paths one after the other, and their tools.
+struct Program {
+  Toolpath path;
+  std::vector<Tool> tools;
+};
+Program programOf(const std::vector<FinishingOperation>& operations, const ToolLibrary& library) {
+  Program program;
+  for (const FinishingOperation& op : operations) {
+    program.path.insert(program.path.end(), op.path.begin(), op.path.end());
+    if (std::none_of(program.tools.begin(), program.tools.end(), [&](const Tool& t) { return t.id == op.tool; }))
+      program.tools.push_back(*library.find(op.tool));
+  }
+  return program;
 }
 
 // The library's flat end mills, largest first (shortest flutes first among equals), as finishing tries them.
@@ -175,9 +203,6 @@ TEST(ContourStretches, FollowTheWallsToFinishInClimbDirection) {
 
 TEST(PlanarFinishing, FinishesAPocketedBlockFromAboveToItsNominalFaces) {
   const Part part = pocketedBlock();
-  LoadOptions fine;
-  fine.chordal_tolerance = 0.002;
-  fine.angular_tolerance = 0.05;
   const ToolLibrary library = loadToolLibrary(kTools);
   const std::vector<const Tool*> flats = flatsLargestFirst(library);
   PlanarGroup group = fromAbove(part);
@@ -211,22 +236,12 @@ TEST(PlanarFinishing, FinishesAPocketedBlockFromAboveToItsNominalFaces) {
   // The judge: the finishing passes swept through the stock roughing leaves (the part with 0.3 mm on every face
   // finished from above) find no gouge and no collision, and leave those faces within 0.01 mm (+ the lattice's
   // rounding) of nominal.
-  const double skin = 0.3;
-  const Part stock = test::stepPart(test::pocketedBlock(Vec3(-2, -2, 0), Vec3(62, 42, 20 + skin), 30 - 2 * skin,
-                                                        20 - 2 * skin, 8, 4 - skin),
-                                    "pocket_stock", fine);
-  Toolpath path;
-  std::vector<Tool> tools;
-  for (const FinishingOperation& op : result.operations) {
-    path.insert(path.end(), op.path.begin(), op.path.end());
-    if (std::none_of(tools.begin(), tools.end(), [&](const Tool& t) { return t.id == op.tool; }))
-      tools.push_back(*library.find(op.tool));
-  }
+  const Program program = programOf(result.operations, library);
   VerifyOptions verify;
   verify.resolution = 0.1;
-  verify.stock_mesh = &stock.mesh;
+  verify.stock_mesh = &pocketStock().mesh;
   verify.max_listed = 1000;
-  const VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, path, tools, verify);
+  const VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, program.path, program.tools, verify);
   EXPECT_EQ(report.gouges, 0) << report.worst_gouge_mm;
   EXPECT_EQ(report.collisions, 0) << report.worst_collision_mm;
   // What is left over the faces finished: every piece of leftover inside the part's outline (the stock beyond its
@@ -243,9 +258,6 @@ TEST(PlanarFinishing, FinishesAPocketedBlockFromAboveToItsNominalFaces) {
 // checked by the simulation against that stock.
 TEST(PlanarFinishing, LinksStayDownWhereTheStockLeftProvesTheWayClear) {
   const Part part = pocketedBlock();
-  LoadOptions fine;
-  fine.chordal_tolerance = 0.002;
-  fine.angular_tolerance = 0.05;
   const ToolLibrary library = loadToolLibrary(kTools);
   const std::vector<const Tool*> flats = flatsLargestFirst(library);
   PlanarGroup group = fromAbove(part);
@@ -257,16 +269,8 @@ TEST(PlanarFinishing, LinksStayDownWhereTheStockLeftProvesTheWayClear) {
       group.targets.push_back({f, FinishingKind::Contour});
   }
   ASSERT_EQ(group.targets.size(), 8u) << "4 walls, 4 corners";
-  const double skin = 0.3;
-  const Part stock = test::stepPart(test::pocketedBlock(Vec3(-2, -2, 0), Vec3(62, 42, 20 + skin), 30 - 2 * skin,
-                                                        20 - 2 * skin, 8, 4 - skin),
-                                    "pocket_stock", fine);
-  const Toolpath blind = [&] {
-    Toolpath path;
-    for (const FinishingOperation& op : finishPlanar(part, group, flats, FinishingOptions{}).operations)
-      path.insert(path.end(), op.path.begin(), op.path.end());
-    return path;
-  }();
+  const double skin = kSkin;
+  const Toolpath blind = programOf(finishPlanar(part, group, flats, FinishingOptions{}).operations, library).path;
   // The stock as slabs 1 mm deep from its top: the block, less the pocket (its corners' arcs by inscribed chords: a
   // hole a hair smaller than the stock's) where the slab lies above the pocket's floor; then beyond the allowance,
   // as finishing takes it.
@@ -303,13 +307,7 @@ TEST(PlanarFinishing, LinksStayDownWhereTheStockLeftProvesTheWayClear) {
       stockBeyondSkin(stock_left, FinishingOptions{}.allowance, toFrame(part.mesh.vertices, group.frame),
                       part.mesh.triangles);
   const PlanarResult result = finishPlanar(part, group, flats, FinishingOptions{});
-  Toolpath path;
-  std::vector<Tool> tools;
-  for (const FinishingOperation& op : result.operations) {
-    path.insert(path.end(), op.path.begin(), op.path.end());
-    if (std::none_of(tools.begin(), tools.end(), [&](const Tool& t) { return t.id == op.tool; }))
-      tools.push_back(*library.find(op.tool));
-  }
+  const auto [path, tools] = programOf(result.operations, library);
   ASSERT_FALSE(path.empty()) << result.operations.size() << " operations";
   int low_links = 0;  // rapids across below the stock's top
   for (std::size_t i = 1; i < path.size(); ++i)
@@ -322,7 +320,7 @@ TEST(PlanarFinishing, LinksStayDownWhereTheStockLeftProvesTheWayClear) {
   EXPECT_LT(rapid, 0.8 * blind_rapid);
   VerifyOptions verify;
   verify.resolution = 0.1;
-  verify.stock_mesh = &stock.mesh;
+  verify.stock_mesh = &pocketStock().mesh;
   const VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, path, tools, verify);
   EXPECT_EQ(report.gouges, 0) << report.worst_gouge_mm;
   EXPECT_EQ(report.collisions, 0) << report.worst_collision_mm;
