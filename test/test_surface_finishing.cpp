@@ -679,6 +679,22 @@ TEST(SurfaceFinishing, LinksStayDownWhereTheMapsProveThemClearHoweverLong) {
   EXPECT_EQ(report.collisions, 0);
 }
 
+TEST(SurfaceFinishing, WaterlineGoesDownOneFeatureBeforeCrossingToTheNext) {
+  // The two domes' walls take waterline contours at the same levels: level by level the tool crossed the 84 mm
+  // between them at every level; nearest contour next, it finishes one dome's wall before the other's.
+  const Part part = stepPart(twoDomes(0), "two_domes");
+  const std::vector<int> spheres = facesOfType(part, SurfaceType::Sphere);
+  const SurfaceFinishingResult r =
+      finishSurfaces3Axis(part, spheres, setupFrame(part, Vec3::UnitZ()), ball6(), 0, SurfaceFinishingOptions{});
+  ASSERT_GT(r.waterline_levels, 5);
+  int crossings = 0;
+  for (std::size_t i = 1; i < r.path.size(); ++i)
+    crossings += (r.path[i].tip.x() > 50) != (r.path[i - 1].tip.x() > 50);
+  std::printf("%d waterline levels, %d contours; %d crossings from dome to dome\n", r.waterline_levels,
+              r.waterline_contours, crossings);
+  EXPECT_LE(crossings, 3) << "one for the waterline, one or two for the raster rows";
+}
+
 namespace {
 
 // A 50 x 40 x 20 block with a spherical pocket of radius 12 sunk 8 mm into its top (a concave face), grown by `grow`.

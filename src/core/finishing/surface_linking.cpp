@@ -1,4 +1,4 @@
-// The order of the passes (waterline top down, raster zig-zag), joins along the CL surface, and 3-axis links.
+// The order of the passes (waterline nearest next from the top, raster zig-zag), joins along the CL surface, and 3-axis links.
 #include <algorithm>
 #include <cmath>
 
@@ -67,34 +67,98 @@ Pass rotatedLoop(const Pass& loop, const Vec3& from) {
   return out;
 }
 
+// Waterline contours by where they may start (every point of a loop, an open contour's first), bucketed on a square
+// grid, for the next contour from a point: the nearest by x-y distance to a start plus the height between (the
+// contour below on a wall is nearer than the next one across the part at the same level).
+class ContourIndex {
+ public:
+  explicit ContourIndex(const std::vector<const Pass*>& contours) : contours_(contours), done_(contours.size(), 0) {
+    Box box;
+    for (const Pass* c : contours)
+      for (const Vec3& p : c->points) box.extend(p);
+    if (box.empty()) return;
+    x0_ = box.min.x();
+    y0_ = box.min.y();
+    cell_ = std::max({kMinCell, (box.max.x() - x0_) / kCellsAcross, (box.max.y() - y0_) / kCellsAcross});
+    nx_ = static_cast<int>((box.max.x() - x0_) / cell_) + 1;
+    ny_ = static_cast<int>((box.max.y() - y0_) / cell_) + 1;
+    cells_.resize(static_cast<std::size_t>(nx_) * ny_);
+    seen_.assign(contours.size(), 0);
+    for (int k = 0; k < static_cast<int>(contours.size()); ++k) {
+      const Pass& c = *contours[k];
+      const std::size_t starts = c.closed ? c.points.size() : 1;
+      for (std::size_t i = 0; i < starts; ++i) {
+        std::vector<int>& in = cells_[cellOf(c.points[i])];
+        if (in.empty() || in.back() != k) in.push_back(k);
+      }
+    }
+  }
+  void take(int k) { done_[k] = 1; }
+  // The nearest contour not taken (there must be one).
+  int nearest(const Vec3& from) {
+    ++stamp_;
+    const int ci = column(from.x()), cj = row(from.y());
+    int best = -1;
+    double best_d = kInf;
+    for (int ring = 0; ring <= std::max(nx_, ny_); ++ring) {
+      if (best >= 0 && (ring - 1) * cell_ > best_d) break;  // every start in this ring is farther in x-y alone
+      for (int j = cj - ring; j <= cj + ring; ++j) {
+        if (j < 0 || j >= ny_) continue;
+        const bool edge_row = j == cj - ring || j == cj + ring;
+        for (int i = ci - ring; i <= ci + ring; i += edge_row ? 1 : 2 * std::max(ring, 1)) {
+          if (i < 0 || i >= nx_) continue;
+          for (int k : cells_[static_cast<std::size_t>(j) * nx_ + i]) {
+            if (done_[k] || seen_[k] == stamp_) continue;
+            seen_[k] = stamp_;
+            const double d = distance(*contours_[k], from);
+            if (d < best_d) best_d = d, best = k;
+          }
+        }
+      }
+    }
+    return best;
+  }
+
+ private:
+  static constexpr double kMinCell = 1.0;        // mm
+  static constexpr double kCellsAcross = 256.0;  // the grid's cells along the longer side, at most
+  int column(double x) const { return std::clamp(static_cast<int>((x - x0_) / cell_), 0, nx_ - 1); }
+  int row(double y) const { return std::clamp(static_cast<int>((y - y0_) / cell_), 0, ny_ - 1); }
+  std::size_t cellOf(const Vec3& p) const { return static_cast<std::size_t>(row(p.y())) * nx_ + column(p.x()); }
+  static double distance(const Pass& c, const Vec3& from) {
+    double d = kInf;
+    const std::size_t starts = c.closed ? c.points.size() : 1;
+    for (std::size_t i = 0; i < starts; ++i) d = std::min(d, distanceXY(c.points[i], from));
+    return d + std::abs(c.points.front().z() - from.z());
+  }
+  const std::vector<const Pass*>& contours_;
+  std::vector<char> done_;
+  std::vector<int> seen_;
+  int stamp_ = 0;
+  double x0_ = 0, y0_ = 0, cell_ = 1;
+  int nx_ = 0, ny_ = 0;
+  std::vector<std::vector<int>> cells_;
+};
+
 }  // namespace
 
 Ordered orderPasses(const Context& ctx, const std::vector<std::vector<Pass>>& levels,
                     const std::vector<std::vector<Pass>>& rows) {
   Builder b{ctx, {}, {}, false, Vec3::Zero()};
-  // Waterline, top down; within a level the nearest contour next (loops from their nearest point).
+  // Waterline: from the top, the nearest contour next whatever its level (down a feature before across the part).
+  std::vector<const Pass*> contours;
   for (const std::vector<Pass>& level : levels) {
     if (!level.empty()) ++b.out.levels;
-    std::vector<bool> done(level.size(), false);
-    for (std::size_t n = 0; n < level.size(); ++n) {
-      std::size_t best = level.size();
-      double best_d = kInf;
-      for (std::size_t k = 0; k < level.size(); ++k) {
-        if (done[k]) continue;
-        double d = 0;
-        if (b.have) {
-          d = kInf;
-          if (level[k].closed)
-            for (const Vec3& p : level[k].points) d = std::min(d, distanceXY(p, b.position));
-          else
-            d = distanceXY(level[k].points.front(), b.position);
-        }
-        if (d < best_d) best_d = d, best = k;
-      }
-      done[best] = true;
-      ++b.out.contours;
-      b.append(level[best].closed && b.have ? rotatedLoop(level[best], b.position) : level[best]);
-    }
+    for (const Pass& pass : level)
+      if (!pass.points.empty()) contours.push_back(&pass);
+  }
+  ContourIndex index(contours);
+  for (std::size_t n = 0; n < contours.size(); ++n) {
+    const int next = b.have ? index.nearest(b.position) : 0;
+    index.take(next);
+    ++b.out.contours;
+    const Pass& pass = *contours[next];
+    b.append(pass.closed && b.have ? rotatedLoop(pass, b.position) : pass);
   }
   // Raster: from the lowest row with runs left, zig-zag upwards through the run nearest the last end.
   std::vector<std::vector<bool>> done(rows.size());

@@ -128,8 +128,9 @@ std::vector<std::vector<Pass>> rasterRows(const Context& ctx, double& mean_step)
 // surface on the right of the motion (climb milling with a clockwise spindle, the wall being material).
 std::vector<std::vector<Pass>> waterlineLevels(const Context& ctx, double& mean_step);
 
-// The passes in cutting order: waterline level by level (nearest first within a level, loops started at their point
-// nearest to where the tool is), then raster rows chained zig-zag. A pass that the one before reaches along the CL
+// The passes in cutting order: waterline contours from the top, each the nearest to where the tool is next (x-y
+// distance to where it may start plus the height between, whatever its level: down a feature before across the
+// part; loops started at their point nearest to the tool), then raster rows chained zig-zag. A pass that the one before reaches along the CL
 // surface (at most ctx.feed_link long, in the region, the body clear) is joined to it into one pass.
 struct Ordered {
   std::vector<Pass> passes;
