@@ -23,10 +23,10 @@ namespace {
 
 // Brute force: the tool at `height` over points of a-b every 0.05 mm, its radius every 0.5 mm of height (and at the
 // ends) up to its holder's top (the spindle side above it as wide as the holder), against each slab's stock standing
-// `margin` higher and grown by that radius and the margin (none for a radius no wider than the cutter's:
-// LinkClearance's rule) and `slack`.
+// `margin` higher and grown by that radius and the margin (in Beside::BodyOnly none for a radius no wider than the
+// cutter's: LinkClearance's rule) and `slack`.
 bool clearByProbing(const Tool& tool, const std::vector<SlabState>& slabs, const Point2& a, const Point2& b,
-                    double height, double margin, double slack) {
+                    double height, double margin, LinkClearance::Beside beside, double slack) {
   const int samples = 1 + static_cast<int>((b - a).norm() / 0.05);
   for (const SlabState& slab : slabs) {
     const double from = std::max(0.0, slab.z - height), to = slab.top + margin - height;
@@ -35,7 +35,8 @@ bool clearByProbing(const Tool& tool, const std::vector<SlabState>& slabs, const
       if (at < from) break;
       const double radius = at > toolLength(tool) ? holderTopRadius(tool) : toolRadiusAt(tool, at);
       if (radius <= 0) continue;
-      const Region grown = offsetRegion(slab.remaining, radius + (radius <= tool.diameter / 2 ? 0 : margin) + slack);
+      const bool keeps = radius > tool.diameter / 2 || beside == LinkClearance::Beside::WholeTool;
+      const Region grown = offsetRegion(slab.remaining, radius + (keeps ? margin : 0) + slack);
       for (int i = 0; i <= samples; ++i)
         if (regionContains(grown, a + (b - a) * (static_cast<double>(i) / samples))) return false;
     }
@@ -47,8 +48,12 @@ bool clearByProbing(const Tool& tool, const std::vector<SlabState>& slabs, const
 
 // LinkClearance against probing: the height it gives is clear by probing (with 0.05 mm less margin, for the probe's
 // spacing) and 0.2 mm lower is not (with 0.05 mm more, under the ceiling); where probing finds the lowest height clear
-// with 0.3 mm more margin, it gives that height.
-TEST(LinkClearance, HeightsAreClearByProbingAndNotNeedlesslyHigh) {
+// with 0.3 mm more margin, it gives that height. Both rules beside the stock: roughing's (the flutes keep none) and
+// finishing's (the whole tool keeps the margin).
+class LinkClearanceBeside : public testing::TestWithParam<LinkClearance::Beside> {};
+
+TEST_P(LinkClearanceBeside, HeightsAreClearByProbingAndNotNeedlesslyHigh) {
+  const LinkClearance::Beside beside = GetParam();
   Tool tool;
   tool.id = "flat10";
   tool.diameter = 10;
@@ -64,7 +69,7 @@ TEST(LinkClearance, HeightsAreClearByProbingAndNotNeedlesslyHigh) {
     SCOPED_TRACE(trial);
     // Slabs 4 mm thick from z = 0 up to 20: a few blocks of stock each, fewer higher up.
     std::vector<SlabState> slabs;
-    LinkClearance clearance(tool, margin);
+    LinkClearance clearance(tool, margin, beside);
     for (double top = 20; top > 0; top -= 4) {
       std::vector<Ring> blocks;
       for (int i = 0; i < 1 + static_cast<int>(4 * unit(random) * (20 - top) / 20); ++i) {
@@ -78,13 +83,13 @@ TEST(LinkClearance, HeightsAreClearByProbingAndNotNeedlesslyHigh) {
     const double lowest = 1;  // under every slab's top: only a way round the stock's sides is clear there
     const double height = clearance.lowestClear(a, b, lowest, ceiling);
     if (height < ceiling) {
-      EXPECT_TRUE(clearByProbing(tool, slabs, a, b, height, margin, -0.05)) << "height " << height;
+      EXPECT_TRUE(clearByProbing(tool, slabs, a, b, height, margin, beside, -0.05)) << "height " << height;
     }
     if (height > lowest + 0.2 && height < ceiling) {  // and no lower: 0.2 mm under it probing finds stock within a zone's reach
-      EXPECT_FALSE(clearByProbing(tool, slabs, a, b, height - 0.2, margin, 0.05)) << "height " << height;
+      EXPECT_FALSE(clearByProbing(tool, slabs, a, b, height - 0.2, margin, beside, 0.05)) << "height " << height;
       ++lowest_proven;
     }
-    if (clearByProbing(tool, slabs, a, b, lowest, margin, 0.3)) {
+    if (clearByProbing(tool, slabs, a, b, lowest, margin, beside, 0.3)) {
       EXPECT_EQ(height, lowest);
       ++lowest_kept;
     }
@@ -94,6 +99,32 @@ TEST(LinkClearance, HeightsAreClearByProbingAndNotNeedlesslyHigh) {
   EXPECT_GE(lowest_kept, 3);  // and ways clear at the lowest height
   EXPECT_GE(lowest_proven, 3);
 }
+
+// A link passing a block of stock half the margin farther than the cutter's radius, below its top: roughing's rule
+// (the slab lost what the cutter swept) lets the flutes pass there; finishing's (the slab leaves out the skin the
+// margin covers) lifts the tool over the block.
+TEST_P(LinkClearanceBeside, TheFlutesKeepTheMarginBesideTheStockOnlyWhereTheRuleSaysSo) {
+  const LinkClearance::Beside beside = GetParam();
+  Tool tool;
+  tool.id = "flat10";
+  tool.diameter = 10;
+  tool.flute_length = 22;
+  tool.shank_diameter = 10;
+  tool.stickout = 38;
+  tool.holder = {{40, 64}};
+  const double margin = 1.5, lowest = 2, ceiling = 60;
+  LinkClearance clearance(tool, margin, beside);
+  clearance.addSlab({0, 10, region({rectangle(0, 0, 20, 20)})}, {});
+  const Point2 a(-40, 20 + 5 + margin / 2), b(60, 20 + 5 + margin / 2);  // 5.75 mm from the block's side
+  const double height = clearance.lowestClear(a, b, lowest, ceiling);
+  if (beside == LinkClearance::Beside::BodyOnly)
+    EXPECT_EQ(height, lowest);
+  else
+    EXPECT_NEAR(height, 10 + margin, 1e-3);  // the flutes' margin over the block's top
+}
+
+INSTANTIATE_TEST_SUITE_P(Rules, LinkClearanceBeside,
+                         testing::Values(LinkClearance::Beside::BodyOnly, LinkClearance::Beside::WholeTool));
 
 namespace {
 

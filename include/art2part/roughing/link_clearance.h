@@ -8,9 +8,11 @@
 // as the operation goes on; a segment is clear of a slab when every body zone overlapping the slab's heights, or
 // coming within the margin over its top, keeps its radius plus the margin from every point of `remaining`. Heights
 // start at the caller's lowest, at or above the top of the slab it cuts. Every zone keeps the margin over the stock's
-// top; beside it the flutes, and a shank no wider than them, keep none, and `remaining` loses the whole disc the
-// cutter swept round every centre point (the slab's own record keeps a band kClearedInsetMm wide of it): otherwise no
-// link could pass where the tool has just cut beside a wall, a tool radius from the stock left on the wall.
+// top; beside it, in roughing (Beside::BodyOnly), the flutes and a shank no wider than them keep none, and `remaining`
+// loses the whole disc the cutter swept round every centre point (the slab's own record keeps a band kClearedInsetMm
+// wide of it): otherwise no link could pass where the tool has just cut beside a wall, a tool radius from the stock
+// left on the wall. Stock that leaves out a band round the part (finishing's stock beyond the skin) needs the margin
+// beside the flutes too, the margin covering the band (Beside::WholeTool).
 #pragma once
 
 #include <vector>
@@ -23,8 +25,14 @@ namespace art2part {
 
 class LinkClearance {
  public:
-  // `margin`: mm kept between any part of the tool and the stock (the holder margin of roughing).
-  LinkClearance(const Tool& tool, double margin);
+  // Which zones of the tool keep the margin beside the stock (every zone keeps it over a slab's top).
+  enum class Beside {
+    BodyOnly,   // the zones wider than the cutter: the slabs' stock lost what the cutter swept (roughing)
+    WholeTool,  // the flutes too: the margin covers a band the slabs leave out (finishing's skin)
+  };
+  // `margin`: mm kept between the tool and the stock (the holder margin of roughing; finishing: its allowance and a
+  // clearance).
+  LinkClearance(const Tool& tool, double margin, Beside beside = Beside::BodyOnly);
 
   // A slab (its stock, part section included) and what the operation swept there, if anything: the centre region
   // grown by the tool radius (every point within the radius of it is swept: clearing_paths.h).
@@ -55,7 +63,7 @@ class LinkClearance {
   // The distance from the segment to the slab's stock (0 where it enters it); farther than `beyond`: any larger value.
   static double distanceTo(const Slab& slab, const Point2& a, const Point2& b, double beyond);
 
-  double margin_ = 0;  // kept over a slab's top by every zone, beside it by the zones wider than the cutter
+  double margin_ = 0;  // kept over a slab's top by every zone, beside it as `Beside` says
   double widest_ = 0;  // the widest zone's radius, margin included
   std::vector<Zone> zones_;
   std::vector<Slab> slabs_;

@@ -3,62 +3,6 @@
 
 namespace art2part::finishing_detail {
 
-namespace {
-
-double pointToSegment(const Point2& p, const Point2& a, const Point2& b) {
-  const Point2 ab = b - a;
-  const double t = ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
-  return (a + t * ab - p).norm();
-}
-
-double cross(const Point2& a, const Point2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-// Distance between segments a-b and p-q: 0 where they cross, else the least of the ends' to the other segment.
-double segmentToSegment(const Point2& a, const Point2& b, const Point2& p, const Point2& q) {
-  const double d1 = cross(b - a, p - a), d2 = cross(b - a, q - a), d3 = cross(q - p, a - p), d4 = cross(q - p, b - p);
-  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) return 0;
-  return std::min({pointToSegment(a, p, q), pointToSegment(b, p, q), pointToSegment(p, a, b), pointToSegment(q, a, b)});
-}
-
-// The region comes within `reach` of segment a-b.
-bool regionNear(const Region& region, const Point2& a, const Point2& b, double reach) {
-  const Point2 lo = a.cwiseMin(b) - Point2(reach, reach), hi = a.cwiseMax(b) + Point2(reach, reach);
-  const Region near = ringsMeeting(region, lo, hi);
-  if (near.empty()) return false;
-  if (regionContains(near, a)) return true;
-  for (const ClipperLib::Path& ring : near)
-    for (std::size_t i = 0; i < ring.size(); ++i)
-      if (segmentToSegment(a, b, fromRegionPoint(ring[i]), fromRegionPoint(ring[(i + 1) % ring.size()])) <= reach)
-        return true;
-  return false;
-}
-
-}  // namespace
-
-double LinkHeight::across(const Point2& a, const Point2& b) const {
-  if (slabs_ == nullptr || slabs_->empty()) return std::numeric_limits<double>::infinity();
-  double way = slabs_->back().z;  // nothing is known below the lowest slab
-  for (const Zone& zone : zones_)
-    for (const SlabState& slab : *slabs_) {  // top down: the first slab near the zone is the highest it must clear
-      if (slab.top - zone.above_tip + margin_ <= way) break;
-      if (regionNear(slab.remaining, a, b, zone.radius + margin_)) {
-        way = slab.top - zone.above_tip + margin_;
-        break;
-      }
-    }
-  return way;
-}
-
-std::vector<LinkHeight::Zone> linkZones(const Tool& tool) {
-  std::vector<LinkHeight::Zone> zones{{0.5 * tool.diameter, 0}, {0.5 * tool.shank_diameter, 0}};
-  double above = tool.stickout;
-  for (const HolderStep& step : tool.holder) {
-    zones.push_back({0.5 * step.diameter, above});
-    above += step.length;
-  }
-  return zones;
-}
-
 // Rapid descents (below the clearance plane) moved to where the tool comes down clear of the allowance, joined to the
 // descent's foot by a feed; where there is none nearby, the descent is a feed.
 std::vector<ClearingPoint> safeDescents(const std::vector<ClearingPoint>& moves, const SafeDescent& safe,

@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "art2part/finishing/planar_finishing.h"
 #include "art2part/roughing/clearing_paths.h"
+#include "art2part/roughing/link_clearance.h"
 #include "art2part/roughing/shadow.h"
 
 namespace art2part::finishing_detail {
@@ -16,33 +18,18 @@ namespace art2part::finishing_detail {
 constexpr double kSafeHeight = 1.0;  // mm above the allowance where a descent changes from rapid to feed
 constexpr double kLinkClearance = 1.0;  // mm a link across keeps from the stock left, beyond the allowance
 
-// The lowest height at which the tool may move straight across from one point to another: every zone of it (the
-// cutter, the shank, the holder's steps: radius and height above the tip) clear by `margin` sideways and `margin` in
-// height of the stock left (slabs top down, the part's section included, as finishing's stock beyond the skin: the
-// margin covers the skin it leaves out). Nothing is known below the lowest slab: a move never goes lower than its
-// bottom; with no slabs there is no way across but the clearance plane (infinity). Finishing only takes material away,
-// so stock left before it bounds what is there at any point of it.
-class LinkHeight {
- public:
-  struct Zone {
-    double radius = 0, above_tip = 0;
-  };
-  LinkHeight() = default;
-  LinkHeight(const std::vector<SlabState>& slabs, std::vector<Zone> zones, double margin)
-      : slabs_(&slabs), zones_(std::move(zones)), margin_(margin) {}
-  double across(const Point2& a, const Point2& b) const;
-
- private:
-  const std::vector<SlabState>* slabs_ = nullptr;
-  std::vector<Zone> zones_;
-  double margin_ = 0;
+// Where links across may go below the clearance plane: at the heights the stock left before the pass proves clear
+// (finishing only takes material away, so that stock bounds what is there at any point of it), never below `floor`
+// (nothing is known below the lowest slab).
+struct LinkWay {
+  LinkClearance clearance;
+  double floor = 0;
 };
-// The zones of a tool for LinkHeight: the cutter with its flutes, the shank, the holder's steps.
-std::vector<LinkHeight::Zone> linkZones(const Tool& tool);
 
 class PathWriter {
  public:
-  PathWriter(const SetupFrame& frame, const Tool& tool, int setup, double clearance_z, LinkHeight link = {})
+  PathWriter(const SetupFrame& frame, const Tool& tool, int setup, double clearance_z,
+             std::optional<LinkWay> link = std::nullopt)
       : frame_(frame), tool_(tool), setup_(setup), clearance_z_(clearance_z), link_(std::move(link)) {}
 
   void move(const Vec3& p, MoveKind kind) {
@@ -64,7 +51,9 @@ class PathWriter {
   // across, down fast to `safe` (or only to `floor` when that is higher), then feed.
   void enter(const Point2& xy, double z, double safe, double floor) {
     const double fast = std::max(safe, floor);
-    const double way = started_ ? std::max(link_.across(at_.head<2>(), xy), at_.z()) : clearance_z_;
+    const double way = started_ && link_ ? link_->clearance.lowestClear(at_.head<2>(), xy,
+                                                                        std::max(at_.z(), link_->floor), clearance_z_)
+                                         : clearance_z_;
     if (way < clearance_z_ - 1e-9) {
       move(Vec3(at_.x(), at_.y(), way), MoveKind::Rapid);
       move(Vec3(xy.x(), xy.y(), way), MoveKind::Rapid);
@@ -91,7 +80,7 @@ class PathWriter {
   const Tool& tool_;
   int setup_;
   double clearance_z_;
-  LinkHeight link_;
+  std::optional<LinkWay> link_;
   Toolpath path_;
   Vec3 at_ = Vec3::Zero();
   bool started_ = false;

@@ -27,9 +27,11 @@ double segmentDistance(const Point2& a, const Point2& b, const Point2& p, const 
 
 }  // namespace
 
-LinkClearance::LinkClearance(const Tool& tool, double margin) : margin_(margin) {
+LinkClearance::LinkClearance(const Tool& tool, double margin, Beside beside) : margin_(margin) {
   const double cutter = tool.diameter / 2;
-  auto withMargin = [&](double radius) { return radius <= cutter ? radius - kGridSlack : radius + margin; };
+  auto withMargin = [&](double radius) {
+    return radius <= cutter && beside == Beside::BodyOnly ? radius - kGridSlack : radius + margin;
+  };
   zones_.push_back({0, tool.flute_length, withMargin(cutter)});
   double top = tool.flute_length, widest = cutter;
   for (const BodyZone& zone : bodyZones(tool)) {
