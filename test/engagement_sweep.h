@@ -20,6 +20,9 @@ struct EngagementFigures {
   double over_mm = 0;          // of which with the engagement above the limit asked
   double worst_deg = 0;        // the largest engagement met
   long material_left = 0;      // pixels of material left within reach (the cutter could have taken them)
+  // Of the length judged, where the material met lies mostly on the right of the motion (climb milling with the
+  // spindle turning clockwise: each tooth enters the chip at its thickest) and where mostly on the left.
+  double climb_mm = 0, conventional_mm = 0;
 };
 
 class EngagementSweep {
@@ -59,9 +62,12 @@ class EngagementSweep {
       const bool judge = measured(i);
       for (int s = 1; s <= steps; ++s) {
         const Point2 c = a + (b - a) * (static_cast<double>(s) / steps);
-        const double angle = engagedDeg(c, (b - a) / std::max(length, 1e-12), radius);
+        const Engaged engaged = engagedAt(c, (b - a) / std::max(length, 1e-12), radius);
+        const double angle = 360.0 * (engaged.right + engaged.left) / kSamples;
         if (judge) {
           f.cut_mm += length / steps;
+          if (engaged.right > engaged.left) f.climb_mm += length / steps;
+          if (engaged.left > engaged.right) f.conventional_mm += length / steps;
           f.worst_deg = std::max(f.worst_deg, angle);
           if (angle > limit_deg) f.over_mm += length / steps;
         }
@@ -90,14 +96,18 @@ class EngagementSweep {
     return i >= 0 && j >= 0 && i < nx_ && j < ny_ && material_[index(i, j)];
   }
 
-  // Degrees of the leading half of the circle of radius r + 1.5 pixels round c that lie in material (kSamples round
-  // the whole circle).
-  double engagedDeg(const Point2& c, const Point2& direction, double radius) const {
+  // The samples of the leading half of the circle of radius r + 1.5 pixels round c that lie in material (kSamples
+  // round the whole circle), right and left of the motion.
+  struct Engaged {
+    int right = 0, left = 0;
+  };
+  Engaged engagedAt(const Point2& c, const Point2& direction, double radius) const {
     const double rr = radius + 1.5 * pixel_;
-    int in = 0;
+    Engaged in;
     for (const Point2& u : circle_)
-      if (u.dot(direction) >= 0 && materialAt(c + rr * u)) ++in;
-    return 360.0 * in / kSamples;
+      if (u.dot(direction) >= 0 && materialAt(c + rr * u))
+        ++(direction.x() * u.y() - direction.y() * u.x() < 0 ? in.right : in.left);
+    return in;
   }
 
   void remove(const Point2& c, double radius) {

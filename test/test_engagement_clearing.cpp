@@ -105,10 +105,13 @@ TEST(EngagementClearing, BlockWithIslandsIsClearedUnderTheAngle) {
                            regionFromPolygons({circle({25, 25}, 8), rectangle(50, 15, 65, 40)}), r);
   const Measured m = clearAndMeasure(slab, r, 40);
   std::printf("block: %.0f mm cut, %.1f mm over the angle (worst %.0f deg), %.1f mm unbounded, %d fronts, %d hops, "
-              "%ld pixels left\n",
+              "%ld pixels left, %.0f mm climb, %.0f mm conventional\n",
               m.figures.cut_mm, m.figures.over_mm, m.figures.worst_deg, m.stats.unbounded_mm, m.stats.passes,
-              m.stats.hops, m.left);
+              m.stats.hops, m.left, m.figures.climb_mm, m.figures.conventional_mm);
   EXPECT_TRUE(m.inside);
+  // Climb milling: the material on the right of the feed (the spindle turning clockwise), all but where a front
+  // meets material on both sides.
+  EXPECT_GT(m.figures.climb_mm, 20 * m.figures.conventional_mm);
   EXPECT_EQ(m.left, 0);
   EXPECT_LE(m.figures.over_mm, m.stats.unbounded_mm + 0.01 * m.figures.cut_mm);
 }
@@ -118,9 +121,12 @@ TEST(EngagementClearing, ClosedPocketStartsWithAHelix) {
   const Slab slab = enclosedSlab(regionFromPolygons({rectangle(-20, -20, 80, 60)}),
                                  regionFromPolygons({rectangle(10, 10, 50, 35)}), r);
   const Measured m = clearAndMeasure(slab, r, 40);
-  std::printf("pocket: %.0f mm cut, %.1f mm over the angle (worst %.0f deg), %.1f mm unbounded, %d helices, %ld left\n",
-              m.figures.cut_mm, m.figures.over_mm, m.figures.worst_deg, m.stats.unbounded_mm, m.stats.contours, m.left);
+  std::printf("pocket: %.0f mm cut, %.1f mm over the angle (worst %.0f deg), %.1f mm unbounded, %d helices, %ld left, "
+              "%.0f mm climb, %.0f mm conventional\n",
+              m.figures.cut_mm, m.figures.over_mm, m.figures.worst_deg, m.stats.unbounded_mm, m.stats.contours, m.left,
+              m.figures.climb_mm, m.figures.conventional_mm);
   EXPECT_EQ(m.stats.contours, 1);
+  EXPECT_GT(m.figures.climb_mm, 20 * m.figures.conventional_mm);
   EXPECT_TRUE(m.inside);
   EXPECT_EQ(m.left, 0);
 }

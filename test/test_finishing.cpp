@@ -189,8 +189,9 @@ TEST(ContourStretches, FollowTheWallsToFinishInClimbDirection) {
   EXPECT_GT(hi, 7 + 0.4);
   EXPECT_GT(lo, 1.5);
   EXPECT_LT(hi, 8.5);
-  // Climb milling with the spindle turning clockwise: the material (the wall) on the left of the feed, so up +y here.
-  EXPECT_GT(s.points.back().y(), s.points.front().y());
+  // Climb milling with the spindle turning clockwise: the material (the wall) on the right of the feed (the tool on
+  // the left of the contour, as G41 keeps it), so down -y here.
+  EXPECT_LT(s.points.back().y(), s.points.front().y());
   // All round: the whole ring, closed.
   std::vector<Point2> around;
   for (double t = 0; t <= 10; t += 0.25) {

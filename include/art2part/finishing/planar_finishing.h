@@ -11,7 +11,8 @@
 // `holder_margin` clear of the part above their bottoms (the holder also clear of the roughing allowance still on
 // other faces): roughing's ForbiddenRegion, grown level by level. That region's rings are where the tool touches the
 // part; a wall is reached where a ring passes within the cutter's radius of it, and only the stretches of the rings
-// near the walls to finish are cut, climb milling (material on the left of the feed), entered from the open side.
+// near the walls to finish are cut, climb milling (material on the right of the feed, the spindle turning
+// clockwise), entered from the open side.
 // A wall deeper than the flutes reach with the shank clear is finished down to where the shank allows and reported
 // partial; a smaller tool finishes what a larger one cannot reach (rest finishing), down to the smallest given.
 //
@@ -78,9 +79,9 @@ struct ContourStretch {
 };
 
 // The stretches of the region's rings that pass within `reach` of any of `targets` (points, frame x-y), in climb
-// direction (material on the left: Clipper's ring orientation reversed), gaps along a ring shorter than `link_gap`
-// bridged, each stretch extended by `lead` at both ends along its ring; a stretch covering nearly all its ring is the
-// whole ring, closed. Ring vertices are spread at most `spacing` apart first.
+// direction (material on the right: the region on their left, Clipper's ring orientation), gaps along a ring shorter
+// than `link_gap` bridged, each stretch extended by `lead` at both ends along its ring; a stretch covering nearly all
+// its ring is the whole ring, closed. Ring vertices are spread at most `spacing` apart first.
 std::vector<ContourStretch> contourStretches(const Region& allowed, const std::vector<Point2>& targets, double reach,
                                              double link_gap, double lead, double spacing = 0.5);
 

@@ -16,8 +16,8 @@
 // bound (ClearingStats::unbounded_mm). The connected pieces of material are cleared one after the other, nearest
 // first.
 //
-// The moves: the new stretches of each front, material on the tool's left (climb milling with a right-hand
-// spindle), going on round a front along the stretches that did not move (they lie on cleared ground) where that is
+// The moves: the new stretches of each front, material on the tool's right (climb milling with the spindle turning
+// clockwise), going on round a front along the stretches that did not move (they lie on cleared ground) where that is
 // quicker than a hop; else a hop over the slab, a rapid down a column of cleared ground 0.05 mm inside it to the safe
 // height, a plunge and a short feed onto the front.
 //

@@ -35,13 +35,13 @@ std::vector<ClearingPoint> safeDescents(const std::vector<ClearingPoint>& moves,
   return out;
 }
 
-// Cuts one stretch of ring at height z: entered from the open side (the region lies right of a climb stretch) where
+// Cuts one stretch of ring at height z: entered from the open side (the region lies left of a climb stretch) where
 // the straight lead-in stays in the region, else straight down at its first point.
 void cutStretch(const ContourStretch& s, double z, double top, double lead, const Region& allowed,
                 const SafeDescent& safe, const DescentLimit& limit, PathWriter& out) {
   const Point2& p0 = s.points.front();
   const Point2 t = (s.points[1] - p0).normalized();
-  Point2 start = p0 + Point2(t.y(), -t.x()) * lead;
+  Point2 start = p0 + Point2(-t.y(), t.x()) * lead;
   if (!segmentInside(allowed, start, p0)) start = p0;
   Point2 down;
   if (safe.at(start, 2 * lead, down)) {
@@ -57,7 +57,7 @@ void cutStretch(const ContourStretch& s, double z, double top, double lead, cons
   const Point2& pn = s.closed ? p0 : s.points.back();
   const Point2& pp = s.closed ? s.points.back() : s.points[s.points.size() - 2];
   const Point2 u = (pn - pp).normalized();
-  const Point2 off = pn + Point2(u.y(), -u.x()) * lead;
+  const Point2 off = pn + Point2(-u.y(), u.x()) * lead;
   if (segmentInside(allowed, pn, off)) out.move(Vec3(off.x(), off.y(), z), MoveKind::Feed);
 }
 

@@ -50,7 +50,6 @@ std::vector<ContourStretch> contourStretches(const Region& allowed, const std::v
   const PointGrid grid(targets, std::max(reach, 1e-3));
   for (Ring ring : regionRings(allowed)) {
     if (ring.size() < 3) continue;
-    std::reverse(ring.begin(), ring.end());  // climb: material on the left
     const DenseRing d = densify(ring, spacing);
     const std::size_t n = d.points.size();
     std::vector<char> near(n);

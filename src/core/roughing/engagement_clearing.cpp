@@ -67,12 +67,11 @@ struct Stretch {
 };
 
 // The stretches of `next`'s rings that moved beyond `before_grown` (the ground cleared before, grown by
-// kOnOldFront), each turned so material lies on its left (a region's rings have the region on their left: reversed).
+// kOnOldFront), material on their right (a region's rings have the region on their left): climb milling.
 std::vector<Stretch> newStretches(const Region& next, const Region& before_grown) {
   const RegionLocator old(before_grown);
   std::vector<Stretch> stretches;
-  for (Ring ring : regionRings(next)) {
-    std::reverse(ring.begin(), ring.end());
+  for (const Ring& ring : regionRings(next)) {
     const std::size_t n = ring.size();
     if (n < 3) continue;
     std::vector<bool> moved(n);
@@ -210,7 +209,6 @@ class FrontCutter {
       const Region seed = thin ? piece.rings : disc(centre, std::min(0.5 * r, 0.9 * depth));
       std::vector<Ring> rings = regionRings(seed);
       Polyline ring(rings.front().begin(), rings.front().end());
-      std::reverse(ring.begin(), ring.end());  // material on the left
       std::pair<std::size_t, Point2> lap{ring.size() - 1, ring.front()};
       if (!writer_.linkTo(ring.front(), false, 0, cleared_)) lap = writer_.enterRing(ring);
       for (std::size_t k = 1; k <= ring.size(); ++k) writer_.feed(ring[(lap.first + k) % ring.size()]);
