@@ -160,7 +160,7 @@ HoleMachining chooseHoleMethod(const Hole& hole, const ToolLibrary& library, con
 Mesh holePlugs(const std::vector<Hole>& holes, const std::vector<HoleMachining>& methods);
 
 // The cutter locations of one group of holes (same method and tool) made with `tool` in setup `setup` whose direction
-// is the holes' axis: in the order given (nearest neighbour from the first is the caller's choice), for each a rapid at
+// is the holes' axis: in the order given (travelOrder's is the caller's choice), for each a rapid at
 // the clearance height over it, a rapid down to the R plane above its mouth (retract_height), a feed straight down the
 // axis to the depth, a rapid back to the R plane and up to the clearance height (`clearance_above` mm over the highest
 // mouth along the axis, raised over the part's material measured round the holes, free_radius, + holder_margin; the

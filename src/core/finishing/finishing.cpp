@@ -21,6 +21,7 @@
 #include "art2part/finishing/planar_finishing.h"
 #include "art2part/finishing/stock_after_roughing.h"
 #include "art2part/geometry/solid_closure.h"
+#include "art2part/geometry/travel_order.h"
 #include "art2part/roughing/shadow.h"
 
 namespace art2part {
@@ -348,6 +349,16 @@ void makeHoles(const Context& c, const std::vector<FaceAssignment>& assignment, 
       if (std::find(spots.begin(), spots.end(), h) == spots.end()) spots.push_back(h);
     }
   }
+  // Each run's holes in the order that travels least between them (the face order crossed the part from hole to hole).
+  auto inTravelOrder = [&](std::vector<int>& group) {
+    std::vector<Vec3> mouths;
+    for (int h : group) mouths.push_back(holes[h].mouth);
+    std::vector<int> ordered;
+    for (int k : travelOrder(mouths, holes[group.front()].axis)) ordered.push_back(group[k]);
+    group = std::move(ordered);
+  };
+  for (auto& entry : spotted) inTravelOrder(entry.second);
+  for (auto& entry : drilled) inTravelOrder(entry.second);
   // The rapids between holes at the setup's clearance plane: over the stock's top along the holes' axis.
   auto clearanceAbove = [&](const std::vector<int>& group) {
     const Vec3& d = holes[group.front()].axis;
