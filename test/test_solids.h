@@ -17,6 +17,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "art2part/geometry/part.h"
 #include "test_meshes.h"
@@ -57,6 +58,14 @@ inline Part stepPart(const TopoDS_Shape& shape, const std::string& name, const L
   if (writer.Transfer(shape, STEPControl_AsIs) != IFSelect_RetDone || writer.Write(path.c_str()) != IFSelect_RetDone)
     throw std::runtime_error("cannot write " + path);
   return loadPart(path, options);
+}
+
+// The part's faces of one surface type.
+inline std::vector<int> facesOfType(const Part& part, SurfaceType type) {
+  std::vector<int> out;
+  for (int f = 0; f < static_cast<int>(part.faces.size()); ++f)
+    if (part.faces[f].type == type) out.push_back(f);
+  return out;
 }
 
 // A box of solid with a rectangular pocket whose vertical corners are rounded: the pocket `size` (x, y) and `depth`,

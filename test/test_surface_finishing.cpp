@@ -11,7 +11,6 @@
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
-#include <STEPControl_Writer.hxx>
 #include <gp_Pnt.hxx>
 
 #include "art2part/finishing/drop_cutter.h"
@@ -21,23 +20,15 @@
 #include "art2part/simulation/tool_solid.h"
 #include "art2part/simulation/verify.h"
 #include "test_meshes.h"
+#include "test_solids.h"
+#include "test_tools.h"
 
 using namespace art2part;
+using art2part::test::ball6;
+using art2part::test::cutter;
+using art2part::test::facesOfType;
 
 namespace {
-
-Tool cutter(const std::string& id, ToolType type, double diameter, double corner = 0) {
-  Tool t;
-  t.id = id;
-  t.type = type;
-  t.diameter = diameter;
-  t.corner_radius = type == ToolType::Ball ? diameter / 2 : corner;
-  t.flute_length = 3 * diameter;
-  t.shank_diameter = diameter;
-  t.stickout = 5 * diameter;
-  t.holder = {{4 * diameter, 40}};
-  return t;
-}
 
 // ---- the oracle: written from the tool's outline alone, sharing nothing with the drop-cutter -----------------------
 
@@ -228,13 +219,9 @@ namespace {
 // ---- parts made with OpenCASCADE, written to STEP and loaded (B-rep faces with their radii) ------------------------
 
 Part stepPart(const TopoDS_Shape& shape, const std::string& name, double chordal = 0.01) {
-  const std::string path = test::tempDir() + "/" + name + ".step";
-  STEPControl_Writer writer;
-  writer.Transfer(shape, STEPControl_AsIs);
-  writer.Write(path.c_str());
   LoadOptions options;
   options.chordal_tolerance = chordal;
-  return loadPart(path, options);
+  return test::stepPart(shape, name, options);
 }
 
 // A 40 x 40 x 10 block with a hemisphere of radius 15 on its top, everything grown by `grow` (the stock: the part
@@ -246,21 +233,7 @@ TopoDS_Shape dome(double grow) {
   return BRepAlgoAPI_Fuse(block, cap).Shape();
 }
 
-std::vector<int> facesOfType(const Part& part, SurfaceType type) {
-  std::vector<int> out;
-  for (int f = 0; f < static_cast<int>(part.faces.size()); ++f)
-    if (part.faces[f].type == type) out.push_back(f);
-  return out;
-}
 
-// A ball end mill in a slim shrink-fit holder (the library's ball6).
-Tool ball6() {
-  Tool t = cutter("ball6", ToolType::Ball, 6);
-  t.flute_length = 12;
-  t.stickout = 30;
-  t.holder = {{23, 12}, {25, 13}, {27, 13}, {44, 42}};
-  return t;
-}
 
 // ---- the scallop on simulated stock: a fine lattice of rays along the surface normal over a small window ----------
 
@@ -635,64 +608,6 @@ TEST(SurfaceFinishing, AThinPillarOfStockApartFromThePartIsKeptWholeAndClearOf) 
       EXPECT_EQ(report.collisions, 0);
   }
   EXPECT_GT(aware.planned_area_mm2, 0.5 * blind.planned_area_mm2);  // the dome away from the pillar is finished
-}
-
-namespace {
-
-// Two domes of radius 8 on one 140 x 40 x 10 block, 100 mm apart, grown by `grow`.
-TopoDS_Shape twoDomes(double grow) {
-  TopoDS_Shape shape =
-      BRepPrimAPI_MakeBox(gp_Pnt(-20 - grow, -20 - grow, -grow), gp_Pnt(120 + grow, 20 + grow, 10 + grow)).Shape();
-  for (double x : {0.0, 100.0})
-    shape = BRepAlgoAPI_Fuse(shape, BRepPrimAPI_MakeSphere(gp_Pnt(x, 0, 10), 8 + grow, 0, M_PI / 2).Shape()).Shape();
-  return shape;
-}
-
-}  // namespace
-
-TEST(SurfaceFinishing, LinksStayDownWhereTheMapsProveThemClearHoweverLong) {
-  // From one dome to the other is 84 mm of flat block (14 diameters): the link passes over it at the height the
-  // clearance maps prove clear, not over the clearance plane, and the simulation finds it clear.
-  const Part part = stepPart(twoDomes(0), "two_domes");
-  const Part stock = stepPart(twoDomes(0.3), "two_domes_stock");
-  const std::vector<int> spheres = facesOfType(part, SurfaceType::Sphere);
-  ASSERT_EQ(spheres.size(), 2u);
-  const Tool tool = ball6();
-  const SetupFrame frame = setupFrame(part, Vec3::UnitZ());
-  const SurfaceFinishingResult r = finishSurfaces3Axis(part, spheres, frame, tool, 0, SurfaceFinishingOptions{});
-  ASSERT_GT(r.path.size(), 100u);
-  EXPECT_EQ(r.retracts, 0);
-  double longest = 0;  // the longest rapid across, and how high it went
-  double its_height = 0;
-  for (std::size_t i = 1; i < r.path.size(); ++i) {
-    const Vec3 d = r.path[i].tip - r.path[i - 1].tip;
-    if (r.path[i].move == MoveKind::Rapid && std::hypot(d.x(), d.y()) > longest)
-      longest = std::hypot(d.x(), d.y()), its_height = r.path[i].tip.z();
-  }
-  EXPECT_GT(longest, 60.0) << "the link from dome to dome";
-  EXPECT_LT(its_height, 18 + SurfaceFinishingOptions{}.clearance - 1) << "under the clearance plane";
-  VerifyOptions vo;
-  vo.stock_mesh = &stock.mesh;
-  vo.resolution = 0.3;
-  const VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, r.path, {tool}, vo);
-  EXPECT_EQ(report.gouges, 0);
-  EXPECT_EQ(report.collisions, 0);
-}
-
-TEST(SurfaceFinishing, WaterlineGoesDownOneFeatureBeforeCrossingToTheNext) {
-  // The two domes' walls take waterline contours at the same levels: level by level the tool crossed the 84 mm
-  // between them at every level; nearest contour next, it finishes one dome's wall before the other's.
-  const Part part = stepPart(twoDomes(0), "two_domes");
-  const std::vector<int> spheres = facesOfType(part, SurfaceType::Sphere);
-  const SurfaceFinishingResult r =
-      finishSurfaces3Axis(part, spheres, setupFrame(part, Vec3::UnitZ()), ball6(), 0, SurfaceFinishingOptions{});
-  ASSERT_GT(r.waterline_levels, 5);
-  int crossings = 0;
-  for (std::size_t i = 1; i < r.path.size(); ++i)
-    crossings += (r.path[i].tip.x() > 50) != (r.path[i - 1].tip.x() > 50);
-  std::printf("%d waterline levels, %d contours; %d crossings from dome to dome\n", r.waterline_levels,
-              r.waterline_contours, crossings);
-  EXPECT_LE(crossings, 3) << "one for the waterline, one or two for the raster rows";
 }
 
 namespace {

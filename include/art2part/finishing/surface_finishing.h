@@ -49,6 +49,8 @@
 // out and their area reported: a finishing tool is no roughing tool, and its holder rubbing the stairs a coarse
 // roughing left is a collision, not a cut.
 //
+// Order: waterline contours first, each the one nearest the tool (down a feature before across the part; an open one
+// from its nearer end unless waterline_both_ways is off), then raster rows zig-zag.
 // Linking: consecutive passes are joined along the CL surface (a feed, every point dropped) when the link is at most
 // feed_link_mm long and stays in the region with the body clear (zig-zag rasters, waterline levels stepping down);
 // otherwise the tool lifts at feed until it clears the part grown by the skin and the stock left, and then moves over
@@ -85,6 +87,10 @@ struct SurfaceFinishingOptions {
   double feed_link_mm = 0.0;        // links along the CL surface up to this long; 0 = the tool's diameter
   double short_link_mm = 0.0;       // links at a safe height up to this long, longer ones retract; 0 = any length (the
                                     // height the clearance maps prove clear along the link: part, skin and stock)
+  bool waterline_both_ways = true;  // an open waterline contour (a wall the region or the holder cuts short) is cut
+                                    // from whichever end is nearer the tool: down a wall level after level with no
+                                    // move back the contour's length, climb and conventional milling in turn; false:
+                                    // climb only (from its start). Closed contours are climb always.
   double max_tilt_deg = 60;         // 5-axis: the most the axis leans from the setup direction
   double tilt_step_deg = 2;         // 5-axis: the tilt is searched in steps of this
   double max_tilt_rate_deg_mm = 2;  // 5-axis: how fast the axis may turn along a pass

@@ -67,12 +67,14 @@ Pass rotatedLoop(const Pass& loop, const Vec3& from) {
   return out;
 }
 
-// Waterline contours by where they may start (every point of a loop, an open contour's first), bucketed on a square
-// grid, for the next contour from a point: the nearest by x-y distance to a start plus the height between (the
-// contour below on a wall is nearer than the next one across the part at the same level).
+// Waterline contours by where they may start (every point of a loop, an open contour's first, and its last when it
+// may be cut either way), bucketed on a square grid, for the next contour from a point: the nearest by x-y distance to
+// a start plus the height between (the contour below on a wall is nearer than the next one across the part at the
+// same level).
 class ContourIndex {
  public:
-  explicit ContourIndex(const std::vector<const Pass*>& contours) : contours_(contours), done_(contours.size(), 0) {
+  ContourIndex(const std::vector<const Pass*>& contours, bool both_ways)
+      : contours_(contours), both_ways_(both_ways), done_(contours.size(), 0) {
     Box box;
     for (const Pass* c : contours)
       for (const Vec3& p : c->points) box.extend(p);
@@ -84,14 +86,11 @@ class ContourIndex {
     ny_ = static_cast<int>((box.max.y() - y0_) / cell_) + 1;
     cells_.resize(static_cast<std::size_t>(nx_) * ny_);
     seen_.assign(contours.size(), 0);
-    for (int k = 0; k < static_cast<int>(contours.size()); ++k) {
-      const Pass& c = *contours[k];
-      const std::size_t starts = c.closed ? c.points.size() : 1;
-      for (std::size_t i = 0; i < starts; ++i) {
-        std::vector<int>& in = cells_[cellOf(c.points[i])];
+    for (int k = 0; k < static_cast<int>(contours.size()); ++k)
+      forStarts(*contours[k], [&](const Vec3& p) {
+        std::vector<int>& in = cells_[cellOf(p)];
         if (in.empty() || in.back() != k) in.push_back(k);
-      }
-    }
+      });
   }
   void take(int k) { done_[k] = 1; }
   // The nearest contour not taken (there must be one).
@@ -125,13 +124,22 @@ class ContourIndex {
   int column(double x) const { return std::clamp(static_cast<int>((x - x0_) / cell_), 0, nx_ - 1); }
   int row(double y) const { return std::clamp(static_cast<int>((y - y0_) / cell_), 0, ny_ - 1); }
   std::size_t cellOf(const Vec3& p) const { return static_cast<std::size_t>(row(p.y())) * nx_ + column(p.x()); }
-  static double distance(const Pass& c, const Vec3& from) {
+  template <class Visit>
+  void forStarts(const Pass& c, Visit visit) const {
+    if (c.closed) {
+      for (const Vec3& p : c.points) visit(p);
+      return;
+    }
+    visit(c.points.front());
+    if (both_ways_) visit(c.points.back());
+  }
+  double distance(const Pass& c, const Vec3& from) const {
     double d = kInf;
-    const std::size_t starts = c.closed ? c.points.size() : 1;
-    for (std::size_t i = 0; i < starts; ++i) d = std::min(d, distanceXY(c.points[i], from));
+    forStarts(c, [&](const Vec3& p) { d = std::min(d, distanceXY(p, from)); });
     return d + std::abs(c.points.front().z() - from.z());
   }
   const std::vector<const Pass*>& contours_;
+  bool both_ways_ = false;
   std::vector<char> done_;
   std::vector<int> seen_;
   int stamp_ = 0;
@@ -152,13 +160,22 @@ Ordered orderPasses(const Context& ctx, const std::vector<std::vector<Pass>>& le
     for (const Pass& pass : level)
       if (!pass.points.empty()) contours.push_back(&pass);
   }
-  ContourIndex index(contours);
+  ContourIndex index(contours, ctx.contours_both_ways);
   for (std::size_t n = 0; n < contours.size(); ++n) {
     const int next = b.have ? index.nearest(b.position) : 0;
     index.take(next);
     ++b.out.contours;
     const Pass& pass = *contours[next];
-    b.append(pass.closed && b.have ? rotatedLoop(pass, b.position) : pass);
+    if (pass.closed && b.have) {
+      b.append(rotatedLoop(pass, b.position));
+    } else if (ctx.contours_both_ways && b.have &&
+               distanceXY(pass.points.back(), b.position) < distanceXY(pass.points.front(), b.position)) {
+      Pass reversed = pass;
+      std::reverse(reversed.points.begin(), reversed.points.end());
+      b.append(reversed);
+    } else {
+      b.append(pass);
+    }
   }
   // Raster: from the lowest row with runs left, zig-zag upwards through the run nearest the last end.
   std::vector<std::vector<bool>> done(rows.size());

@@ -82,6 +82,7 @@ struct Context {
   double min_step = 0.001;     // mm: subdivision stops here (a cliff of the CL surface)
   double body_tolerance = 1e-6;  // mm a cut point may lie below the body clearance (rounding)
   double feed_link = 6;        // mm: links along the CL surface up to this long
+  bool contours_both_ways = false;  // open waterline contours may be cut end to start (conventional milling)
   int threads = 1;
   mutable std::atomic<long> drops{0};
 
@@ -130,7 +131,8 @@ std::vector<std::vector<Pass>> waterlineLevels(const Context& ctx, double& mean_
 
 // The passes in cutting order: waterline contours from the top, each the nearest to where the tool is next (x-y
 // distance to where it may start plus the height between, whatever its level: down a feature before across the
-// part; loops started at their point nearest to the tool), then raster rows chained zig-zag. A pass that the one before reaches along the CL
+// part; loops started at their point nearest to the tool, open contours at their start, or at either end with
+// ctx.contours_both_ways), then raster rows chained zig-zag. A pass that the one before reaches along the CL
 // surface (at most ctx.feed_link long, in the region, the body clear) is joined to it into one pass.
 struct Ordered {
   std::vector<Pass> passes;

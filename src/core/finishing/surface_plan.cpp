@@ -384,6 +384,7 @@ Plan planPasses(const Part& part, const std::vector<int>& faces_in, const SetupF
   ctx.sample_step = o.sample_step > 0 ? o.sample_step : 0.1 * R;
   ctx.min_step = 0.25 * o.chordal_tolerance;
   ctx.feed_link = o.feed_link_mm > 0 ? o.feed_link_mm : tool.diameter;
+  ctx.contours_both_ways = o.waterline_both_ways;
   ctx.threads = threadCount(o.threads);
 
   computeHeights(ctx, v, tris, facing, R + margin + pitch);
