@@ -44,12 +44,38 @@ class PathWriter {
     at_ = p;
     started_ = true;
   }
+  // Clearing moves (clearLevel's, through safeDescents). With a link way, a hop over the clearance plane (straight
+  // up, across, down) goes across at the lowest height the stock left proves clear instead, never under where the
+  // descent's rapid ends; the retract that may start one is held until the next move shows whether it does.
   void clearing(const std::vector<ClearingPoint>& moves) {
-    for (const ClearingPoint& m : moves) move(m.tip, m.move == ClearingMove::Rapid ? MoveKind::Rapid : MoveKind::Feed);
+    for (std::size_t i = 0; i < moves.size(); ++i) {
+      const ClearingPoint& m = moves[i];
+      const bool rapid = m.move == ClearingMove::Rapid, up_there = m.tip.z() >= clearance_z_ - 1e-9;
+      if (link_ && started_ && rapid && up_there && (m.tip.head<2>() - at_.head<2>()).norm() < 1e-9 &&
+          m.tip.z() > at_.z()) {
+        retract_held_ = true;
+        continue;
+      }
+      if (retract_held_ && rapid && up_there && i + 1 < moves.size()) {
+        const ClearingPoint& down = moves[i + 1];
+        if ((down.tip.head<2>() - m.tip.head<2>()).norm() < 1e-9 && down.tip.z() < m.tip.z()) {
+          double lowest = std::max(at_.z(), link_->floor);
+          if (down.move == ClearingMove::Rapid) lowest = std::max(lowest, down.tip.z());
+          const double way = link_->clearance.lowestClear(at_.head<2>(), m.tip.head<2>(), lowest, clearance_z_);
+          retract_held_ = false;
+          move(Vec3(at_.x(), at_.y(), way), MoveKind::Rapid);
+          move(Vec3(m.tip.x(), m.tip.y(), way), MoveKind::Rapid);
+          continue;
+        }
+      }
+      releaseRetract();
+      move(m.tip, rapid ? MoveKind::Rapid : MoveKind::Feed);
+    }
   }
   // To (x, y) at height z from wherever the tool is: up to the height the link proves clear (or the clearance plane),
   // across, down fast to `safe` (or only to `floor` when that is higher), then feed.
   void enter(const Point2& xy, double z, double safe, double floor) {
+    retract_held_ = false;  // this goes up from where the tool is, as high as it must
     const double fast = std::max(safe, floor);
     const double way = started_ && link_ ? link_->clearance.lowestClear(at_.head<2>(), xy,
                                                                         std::max(at_.z(), link_->floor), clearance_z_)
@@ -67,6 +93,7 @@ class PathWriter {
     move(Vec3(xy.x(), xy.y(), z), MoveKind::Feed);
   }
   void retract() {
+    releaseRetract();
     if (started_ && at_.z() < clearance_z_ - 1e-9) move(Vec3(at_.x(), at_.y(), clearance_z_), MoveKind::Rapid);
   }
   Toolpath take() {
@@ -76,6 +103,12 @@ class PathWriter {
   const Vec3& at() const { return at_; }
 
  private:
+  void releaseRetract() {
+    if (!retract_held_) return;
+    retract_held_ = false;
+    move(Vec3(at_.x(), at_.y(), clearance_z_), MoveKind::Rapid);
+  }
+
   SetupFrame frame_;
   const Tool& tool_;
   int setup_;
@@ -84,6 +117,7 @@ class PathWriter {
   Toolpath path_;
   Vec3 at_ = Vec3::Zero();
   bool started_ = false;
+  bool retract_held_ = false;  // a rapid straight up to the clearance plane not written yet (clearing)
 };
 
 // Where the tool may come straight down at rapid: its disc clear of the allowance roughing left on every face above

@@ -288,15 +288,15 @@ ToolRun runTool(const PlanarGroup& group, GroupGeometry& g, const ShadowStack& s
                                                Point2(outline.max.x() + r + 1, outline.max.y() + r + 1),
                                                Point2(outline.min.x() - r - 1, outline.max.y() + r + 1)}});
   const double clearance_z = g.stock.max.z() + options.clearance;
-  // Links between wall stretches stay down where the stock left proves the way clear (the margin covers the skin the
-  // stock beyond it leaves out, and a clearance).
+  // Links between wall stretches and between floor passes stay down where the stock left proves the way clear (the
+  // margin covers the skin the stock beyond it leaves out, and a clearance).
   std::optional<LinkWay> link;
   if (!g.thick->empty()) {
     link = LinkWay{LinkClearance(tool, options.allowance + kLinkClearance, LinkClearance::Beside::WholeTool),
                    g.thick->back().z};
     for (const SlabState& slab : *g.thick) link->clearance.addSlab(slab, {});
   }
-  PathWriter floor_path(group.frame, tool, group.setup, clearance_z);
+  PathWriter floor_path(group.frame, tool, group.setup, clearance_z, link);
   PathWriter wall_path(group.frame, tool, group.setup, clearance_z, std::move(link));
   ClearingOptions clearing;
   clearing.stepover = std::min(options.planar.floor_stepover, 0.9) * tool.diameter;
