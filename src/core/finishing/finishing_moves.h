@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -195,9 +196,24 @@ class DescentLimit {
 std::vector<ClearingPoint> safeDescents(const std::vector<ClearingPoint>& moves, const SafeDescent& safe,
                                         const DescentLimit& limit, double max_shift);
 
-// Cuts one stretch of ring at height z: entered from the open side (the region lies right of a climb stretch) where
+// Cuts one stretch of ring at height z: entered from the open side (the region lies left of a climb stretch) where
 // the straight lead-in stays in the region, else straight down at its first point.
 void cutStretch(const ContourStretch& s, double z, double top, double lead, const Region& allowed,
                 const SafeDescent& safe, const DescentLimit& limit, PathWriter& out);
+
+// A wall stretch to cut at one level (`top`: the level's allowance top), with the level's allowed region and safe
+// descents, which the level's stretches share.
+struct WallStretch {
+  ContourStretch stretch;
+  double z = 0, top = 0;
+  std::shared_ptr<const Region> allowed;
+  std::shared_ptr<const SafeDescent> safe;
+};
+// Cuts the stretches nearest first (x-y distance from the tool to a stretch's start plus the height between), each
+// only once every stretch at a higher level over it is cut (their boxes, grown by `reach`, meet): down one wall band
+// by band before crossing to the next. Why: level after level, the tool crossed the part between walls at every
+// level.
+void cutWalls(const std::vector<WallStretch>& walls, double lead, double reach, const DescentLimit& limit,
+              PathWriter& out);
 
 }  // namespace art2part::finishing_detail

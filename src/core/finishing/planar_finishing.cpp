@@ -305,6 +305,7 @@ ToolRun runTool(const PlanarGroup& group, GroupGeometry& g, const ShadowStack& s
   clearing.contour_pass = true;
   const double lead = std::min(r, 2.0) + options.allowance;
   const DescentLimit limit(*g.thick, r);
+  std::vector<WallStretch> walls;  // every level's stretches, cut after the levels
 
   for (const LevelWork& level : levels) {
     const double zq = level.z + kAbove;
@@ -376,25 +377,16 @@ ToolRun runTool(const PlanarGroup& group, GroupGeometry& g, const ShadowStack& s
           run.wall_targets.push_back(wall.target);
         }
       }
-      if (write_paths) {
-        const SafeDescent safe(allowed, options.allowance);
-        // Nearest stretch next.
-        std::vector<char> used(stretches.size(), 0);
-        for (std::size_t k = 0; k < stretches.size(); ++k) {
-          std::size_t best = 0;
-          double best_d = 1e300;
-          for (std::size_t i = 0; i < stretches.size(); ++i) {
-            if (used[i]) continue;
-            const double d = (stretches[i].points.front() - Point2(wall_path.at().x(), wall_path.at().y())).squaredNorm();
-            if (d < best_d) best_d = d, best = i;
-          }
-          used[best] = 1;
-          cutStretch(stretches[best], level.z, level.z + options.allowance, lead, allowed, safe, limit, wall_path);
-        }
+      if (write_paths) {  // cut once every level's are known (cutWalls)
+        auto level_allowed = std::make_shared<const Region>(std::move(allowed));
+        auto safe = std::make_shared<const SafeDescent>(*level_allowed, options.allowance);
+        for (const ContourStretch& s : stretches)
+          walls.push_back({s, level.z, level.z + options.allowance, level_allowed, safe});
       }
     }
   }
   if (write_paths) {
+    cutWalls(walls, lead, r + kReachSlack, limit, wall_path);
     run.floors = floor_path.take();
     run.walls = wall_path.take();
   }
