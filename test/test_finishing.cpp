@@ -350,3 +350,49 @@ TEST(PlanarFinishing, FloorLinksStayDownWhereTheStockLeftProvesTheWayClear) {
   ASSERT_EQ(group.targets.size(), 2u) << "the top, the pocket's floor";
   expectLinksStayDown(part, group, 20 + kSkin + FinishingOptions{}.clearance - 1);
 }
+
+// Two stepped pockets 60 mm apart, each an upper pocket 10 mm deep with a lower one 10 mm deeper in its floor: their
+// walls stand at two levels; `grow` adds a skin (the stock roughing leaves). Level after level, the tool crossed from
+// one pocket to the other at each level; now it finishes one pocket's walls top down before crossing, and the
+// simulation, against the stock with its 0.3 mm skin, finds no gouge and no collision.
+namespace {
+
+TopoDS_Shape steppedPockets(double g) {
+  TopoDS_Shape shape = test::solidBox(Vec3(-g, -g, 0), Vec3(120 + g, 40 + g, 30 + g));
+  for (double cx : {30.0, 90.0}) {
+    shape = test::cut(shape, test::solidBox(Vec3(cx - 15 + g, 5 + g, 20 + g), Vec3(cx + 15 - g, 35 - g, 32)));
+    shape = test::cut(shape, test::solidBox(Vec3(cx - 13 + g, 8 + g, 10 + g), Vec3(cx + 13 - g, 32 - g, 21)));
+  }
+  return shape;
+}
+
+}  // namespace
+
+TEST(PlanarFinishing, WallsAreFinishedPocketByPocketTopDown) {
+  const Part part = test::stepPart(steppedPockets(0), "stepped_pockets", fine());
+  const Part stock = test::stepPart(steppedPockets(kSkin), "stepped_pockets_stock", fine());
+  const ToolLibrary library = loadToolLibrary(kTools);
+  PlanarGroup group;
+  group.frame = setupFrame(part, Vec3::UnitZ());
+  group.stock = test::box(Vec3(-2, -2, -2), Vec3(122, 42, 32));
+  for (int f = 0; f < static_cast<int>(part.faces.size()); ++f) {
+    const Face& face = part.faces[f];
+    if (face.type == SurfaceType::Plane && std::abs(face.normal.z()) < 1e-9 && face.area < 30 * 10 + 1)
+      group.targets.push_back({f, FinishingKind::SideMill});
+  }
+  ASSERT_EQ(group.targets.size(), 16u) << "4 walls in each of the 4 pockets";
+  const PlanarResult result = finishPlanar(part, group, flatsLargestFirst(library), FinishingOptions{});
+  const auto [path, tools] = programOf(result.operations, library);
+  ASSERT_FALSE(path.empty());
+  int crossings = 0;  // from one pocket to the other, within an operation (a tool change starts again)
+  for (std::size_t i = 1; i < path.size(); ++i)
+    crossings += path[i].tool == path[i - 1].tool && (path[i].tip.x() > 60) != (path[i - 1].tip.x() > 60);
+  std::printf("%zu operations, %d crossings between the pockets\n", result.operations.size(), crossings);
+  EXPECT_LE(crossings, static_cast<int>(result.operations.size()));
+  VerifyOptions verify;
+  verify.resolution = 0.2;
+  verify.stock_mesh = &stock.mesh;
+  const VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, path, tools, verify);
+  EXPECT_EQ(report.gouges, 0) << report.worst_gouge_mm;
+  EXPECT_EQ(report.collisions, 0) << report.worst_collision_mm;
+}
