@@ -60,9 +60,7 @@ class PathWriter {
       if (retract_held_ && rapid && up_there && i + 1 < moves.size()) {
         const ClearingPoint& down = moves[i + 1];
         if ((down.tip.head<2>() - m.tip.head<2>()).norm() < 1e-9 && down.tip.z() < m.tip.z()) {
-          double lowest = std::max(at_.z(), link_->floor);
-          if (down.move == ClearingMove::Rapid) lowest = std::max(lowest, down.tip.z());
-          const double way = link_->clearance.lowestClear(at_.head<2>(), m.tip.head<2>(), lowest, clearance_z_);
+          const double way = wayTo(m.tip.head<2>(), down.move == ClearingMove::Rapid ? down.tip.z() : at_.z());
           retract_held_ = false;
           move(Vec3(at_.x(), at_.y(), way), MoveKind::Rapid);
           move(Vec3(m.tip.x(), m.tip.y(), way), MoveKind::Rapid);
@@ -78,9 +76,7 @@ class PathWriter {
   void enter(const Point2& xy, double z, double safe, double floor) {
     retract_held_ = false;  // this goes up from where the tool is, as high as it must
     const double fast = std::max(safe, floor);
-    const double way = started_ && link_ ? link_->clearance.lowestClear(at_.head<2>(), xy,
-                                                                        std::max(at_.z(), link_->floor), clearance_z_)
-                                         : clearance_z_;
+    const double way = wayTo(xy, at_.z());
     if (way < clearance_z_ - 1e-9) {
       move(Vec3(at_.x(), at_.y(), way), MoveKind::Rapid);
       move(Vec3(xy.x(), xy.y(), way), MoveKind::Rapid);
@@ -104,6 +100,12 @@ class PathWriter {
   const Vec3& at() const { return at_; }
 
  private:
+  // The height to go across at from where the tool is to `to`, no lower than `lowest` nor than the tool: the lowest the
+  // link way proves clear, else the clearance plane.
+  double wayTo(const Point2& to, double lowest) const {
+    if (!started_ || !link_) return clearance_z_;
+    return link_->clearance.lowestClear(at_.head<2>(), to, std::max({lowest, at_.z(), link_->floor}), clearance_z_);
+  }
   void releaseRetract() {
     if (!retract_held_) return;
     retract_held_ = false;
