@@ -50,17 +50,24 @@ bool clearByProbing(const Tool& tool, const std::vector<SlabState>& slabs, const
 // spacing) and 0.2 mm lower is not (with 0.05 mm more, under the ceiling); where probing finds the lowest height clear
 // with 0.3 mm more margin, it gives that height. Both rules beside the stock: roughing's (the flutes keep none) and
 // finishing's (the whole tool keeps the margin).
-class LinkClearanceBeside : public testing::TestWithParam<LinkClearance::Beside> {};
+class LinkClearanceBeside : public testing::TestWithParam<LinkClearance::Beside> {
+ protected:
+  // A 10 mm end mill in a holder of one step: bodyZones merges none, so probing sees the same body.
+  static Tool flat10() {
+    Tool tool;
+    tool.id = "flat10";
+    tool.diameter = 10;
+    tool.flute_length = 22;
+    tool.shank_diameter = 10;
+    tool.stickout = 38;
+    tool.holder = {{40, 64}};
+    return tool;
+  }
+};
 
 TEST_P(LinkClearanceBeside, HeightsAreClearByProbingAndNotNeedlesslyHigh) {
   const LinkClearance::Beside beside = GetParam();
-  Tool tool;
-  tool.id = "flat10";
-  tool.diameter = 10;
-  tool.flute_length = 22;
-  tool.shank_diameter = 10;
-  tool.stickout = 38;
-  tool.holder = {{40, 64}};  // one step: bodyZones merges none, so probing sees the same body
+  const Tool tool = flat10();
   const double margin = 0.5, ceiling = 60;
   std::mt19937 random(5);
   std::uniform_real_distribution<double> unit(0, 1);
@@ -105,13 +112,7 @@ TEST_P(LinkClearanceBeside, HeightsAreClearByProbingAndNotNeedlesslyHigh) {
 // margin covers) lifts the tool over the block.
 TEST_P(LinkClearanceBeside, TheFlutesKeepTheMarginBesideTheStockOnlyWhereTheRuleSaysSo) {
   const LinkClearance::Beside beside = GetParam();
-  Tool tool;
-  tool.id = "flat10";
-  tool.diameter = 10;
-  tool.flute_length = 22;
-  tool.shank_diameter = 10;
-  tool.stickout = 38;
-  tool.holder = {{40, 64}};
+  const Tool tool = flat10();
   const double margin = 1.5, lowest = 2, ceiling = 60;
   LinkClearance clearance(tool, margin, beside);
   clearance.addSlab({0, 10, region({rectangle(0, 0, 20, 20)})}, {});
