@@ -289,9 +289,9 @@ ToolRun runTool(const PlanarGroup& group, GroupGeometry& g, const ShadowStack& s
                                                Point2(outline.min.x() - r - 1, outline.max.y() + r + 1)}});
   const double clearance_z = g.stock.max.z() + options.clearance;
   // Links between wall stretches and between floor passes stay down where the stock left proves the way clear (the
-  // margin covers the skin the stock beyond it leaves out, and a clearance).
+  // margin covers the skin the stock beyond it leaves out, and a clearance). Only for the paths: a trial writes none.
   std::optional<LinkWay> link;
-  if (!g.thick->empty()) {
+  if (write_paths && !g.thick->empty()) {
     link = LinkWay{LinkClearance(tool, options.allowance + kLinkClearance, LinkClearance::Beside::WholeTool),
                    g.thick->back().z};
     for (const SlabState& slab : *g.thick) link->clearance.addSlab(slab, {});
