@@ -13,6 +13,7 @@
 #include <optional>
 #include <vector>
 
+#include "art2part/geometry/top_down_schedule.h"
 #include "art2part/roughing/clearing_paths.h"
 #include "art2part/roughing/engagement_clearing.h"
 #include "art2part/roughing/roughing.h"
@@ -44,10 +45,11 @@ struct LevelPiece {
   Region rings;           // the outer ring first, then its holes
 };
 
-// Every level's pieces, handed out one at a time in an order to cut them, each chosen from where the tool ended the
-// one before (not from that piece as a whole: a long piece ends at one end of it). A piece is ready once every piece
-// of a level above whose box lies within `reach` of its box is cut; among the ready pieces, first the first piece of
-// the top level, then the one nearest the tool (0 inside it; at a tie, the deepest: down the pocket the tool is in).
+// Every level's pieces, handed out one at a time in an order to cut them (TopDownSchedule, the level index as the
+// depth), each chosen from where the tool ended the one before (not from that piece as a whole: a long piece ends at
+// one end of it). A piece is ready once every piece of a level above whose box lies within `reach` of its box is cut;
+// among the ready pieces, first the first piece of the top level, then the one nearest the tool (0 inside it; at a
+// tie, the deepest: down the pocket the tool is in).
 class PieceSchedule {
  public:
   PieceSchedule(const std::vector<ClearingLevel>& levels, double reach);
@@ -57,15 +59,8 @@ class PieceSchedule {
   std::size_t next(const std::optional<Point2>& at);
 
  private:
-  struct Box {
-    Point2 lo, hi;
-  };
-  static Box boxOf(const Region& rings);
   std::vector<LevelPiece> pieces_;
-  std::vector<Box> boxes_;
-  std::vector<std::size_t> waiting_;               // per piece: pieces above within reach not cut yet
-  std::vector<std::vector<std::size_t>> unblocks_;  // per piece: pieces below within reach
-  std::vector<bool> taken_;
+  TopDownSchedule schedule_;
 };
 
 }  // namespace art2part

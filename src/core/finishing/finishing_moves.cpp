@@ -1,6 +1,8 @@
 // Moves of the 2.5-D finishing passes (finishing_moves.h).
 #include "finishing_moves.h"
 
+#include "art2part/geometry/top_down_schedule.h"
+
 namespace art2part::finishing_detail {
 
 // Rapid descents (below the clearance plane) moved to where the tool comes down clear of the allowance, joined to the
@@ -61,46 +63,22 @@ void cutStretch(const ContourStretch& s, double z, double top, double lead, cons
   if (segmentInside(allowed, pn, off)) out.move(Vec3(off.x(), off.y(), z), MoveKind::Feed);
 }
 
-namespace {
-
-struct Box2 {
-  Point2 lo, hi;
-  bool meets(const Box2& o) const { return (lo.array() <= o.hi.array()).all() && (o.lo.array() <= hi.array()).all(); }
-};
-
-Box2 boxOf(const ContourStretch& s, double grow) {
-  Box2 box{s.points.front(), s.points.front()};
-  for (const Point2& p : s.points) box.lo = box.lo.cwiseMin(p), box.hi = box.hi.cwiseMax(p);
-  box.lo -= Point2(grow, grow);
-  box.hi += Point2(grow, grow);
-  return box;
-}
-
-}  // namespace
-
 void cutWalls(const std::vector<WallStretch>& walls, double lead, double reach, const DescentLimit& limit,
               PathWriter& out) {
-  const std::size_t n = walls.size();
-  std::vector<Box2> boxes;
-  boxes.reserve(n);
-  for (const WallStretch& w : walls) boxes.push_back(boxOf(w.stretch, reach));
-  std::vector<int> above(n, 0);                // stretches over each not cut yet
-  std::vector<std::vector<std::size_t>> under(n);  // the stretches each one is over
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = 0; j < n; ++j)
-      if (walls[i].z > walls[j].z + 1e-9 && boxes[i].meets(boxes[j])) under[i].push_back(j), ++above[j];
-  std::vector<char> done(n, 0);
-  for (std::size_t k = 0; k < n; ++k) {
-    std::size_t best = n;
-    double best_d = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < n; ++i) {
-      if (done[i] || above[i] > 0) continue;
-      const double d = (walls[i].stretch.points.front() - out.at().head<2>()).norm() + std::abs(walls[i].z - out.at().z());
-      if (d < best_d) best_d = d, best = i;
-    }
-    done[best] = 1;
-    for (std::size_t j : under[best]) --above[j];
-    const WallStretch& w = walls[best];
+  std::vector<ScheduledItem> items;
+  items.reserve(walls.size());
+  for (const WallStretch& w : walls) {
+    ScheduledItem item{-w.z, w.stretch.points.front(), w.stretch.points.front()};
+    for (const Point2& p : w.stretch.points) item.lo = item.lo.cwiseMin(p), item.hi = item.hi.cwiseMax(p);
+    items.push_back(item);
+  }
+  TopDownSchedule schedule(std::move(items), 2 * reach);  // boxes grown by the reach each meet
+  auto distance = [&walls, &out](std::size_t i) {
+    return (walls[i].stretch.points.front() - out.at().head<2>()).norm() + std::abs(walls[i].z - out.at().z());
+  };
+  for (std::size_t i = schedule.next(out.at().head<2>(), distance); i < walls.size();
+       i = schedule.next(out.at().head<2>(), distance)) {
+    const WallStretch& w = walls[i];
     cutStretch(w.stretch, w.z, w.top, lead, *w.allowed, *w.safe, limit, out);
   }
 }

@@ -146,52 +146,36 @@ void pieceByPiece(const OperationLevels& levels, const Tool& tool, const Operati
 
 }  // namespace
 
-PieceSchedule::Box PieceSchedule::boxOf(const Region& rings) {
-  Box box{Point2::Constant(std::numeric_limits<double>::infinity()),
-          Point2::Constant(-std::numeric_limits<double>::infinity())};
-  for (const Ring& ring : regionRings(rings))
-    for (const Point2& p : ring) box.lo = box.lo.cwiseMin(p), box.hi = box.hi.cwiseMax(p);
-  return box;
+namespace {
+
+std::vector<LevelPiece> levelPieces(const std::vector<ClearingLevel>& levels) {
+  std::vector<LevelPiece> pieces;
+  for (std::size_t i = 0; i < levels.size(); ++i)
+    for (RegionPiece& piece : regionPieces(levels[i].centre)) pieces.push_back({i, std::move(piece.rings)});
+  return pieces;
 }
 
-PieceSchedule::PieceSchedule(const std::vector<ClearingLevel>& levels, double reach) {
-  for (std::size_t i = 0; i < levels.size(); ++i)
-    for (RegionPiece& piece : regionPieces(levels[i].centre)) {
-      boxes_.push_back(boxOf(piece.rings));
-      pieces_.push_back({i, std::move(piece.rings)});
-    }
-  waiting_.assign(pieces_.size(), 0);
-  unblocks_.resize(pieces_.size());
-  taken_.assign(pieces_.size(), false);
-  for (std::size_t a = 0; a < pieces_.size(); ++a)
-    for (std::size_t b = a + 1; b < pieces_.size(); ++b)
-      if (pieces_[a].level < pieces_[b].level && !((boxes_[a].lo.array() > boxes_[b].hi.array() + reach).any() ||
-                                                   (boxes_[b].lo.array() > boxes_[a].hi.array() + reach).any())) {
-        unblocks_[a].push_back(b);
-        ++waiting_[b];
-      }
+std::vector<ScheduledItem> scheduledPieces(const std::vector<LevelPiece>& pieces) {
+  std::vector<ScheduledItem> items;
+  items.reserve(pieces.size());
+  for (const LevelPiece& piece : pieces) {
+    ScheduledItem item{static_cast<double>(piece.level), Point2::Constant(std::numeric_limits<double>::infinity()),
+                       Point2::Constant(-std::numeric_limits<double>::infinity())};
+    for (const Ring& ring : regionRings(piece.rings))
+      for (const Point2& p : ring) item.lo = item.lo.cwiseMin(p), item.hi = item.hi.cwiseMax(p);
+    items.push_back(item);
+  }
+  return items;
 }
+
+}  // namespace
+
+PieceSchedule::PieceSchedule(const std::vector<ClearingLevel>& levels, double reach)
+    : pieces_(levelPieces(levels)), schedule_(scheduledPieces(pieces_), reach) {}
 
 std::size_t PieceSchedule::next(const std::optional<Point2>& at) {
-  std::size_t best = pieces_.size();
-  double nearest = std::numeric_limits<double>::infinity();
-  for (std::size_t p = 0; p < pieces_.size(); ++p) {
-    if (taken_[p] || waiting_[p] > 0) continue;
-    if (!at) {  // the first: the first piece of the top level
-      best = p;
-      break;
-    }
-    // The box's distance bounds the piece's from below: most pieces are passed over on it.
-    const Point2 outside = (boxes_[p].lo - *at).cwiseMax(*at - boxes_[p].hi).cwiseMax(Point2::Zero());
-    if (outside.norm() > nearest) continue;
-    const double d = regionDistance(pieces_[p].rings, *at);
-    // Nearest first; at a tie, the deeper piece (down the pocket the tool is in).
-    if (d < nearest || (d == nearest && pieces_[p].level > pieces_[best].level)) best = p, nearest = d;
-  }
-  if (best == pieces_.size()) return best;
-  taken_[best] = true;
-  for (std::size_t b : unblocks_[best]) --waiting_[b];
-  return best;
+  if (!at) return schedule_.first();
+  return schedule_.next(*at, [this, &at](std::size_t i) { return regionDistance(pieces_[i].rings, *at); });
 }
 
 std::vector<ClearingPoint> operationMoves(const OperationLevels& levels, const Tool& tool,
