@@ -488,6 +488,40 @@ TEST(ClearingPaths, AnOpenContourStretchStartsAtTheEndNearerTheTool) {
   }
 }
 
+// A strip cut by lines across it, one boustrophedon pass from end to end, with its far end in air: a pass began at
+// its end in air whatever that cost, so the tool crossed the whole strip to plunge there (featuretype's thin levels
+// crossed the part, 120-170 mm, to begin bands round it). The start is the cheaper by time: on a thin level, where a
+// ramp is short, a ramp at the near end beats the rapid to the far one; on a deep level, where a ramp is long, the
+// plunge in air at the far end still wins.
+TEST(ClearingPaths, APassBeginsAtTheEndThatTakesLessTimeToReachAndEnter) {
+  ClearingOptions options = optionsOf(4, 90, false);  // lines along y, across the strip
+  options.stay_down = true;
+  options.ramp_angle_deg = 10;
+  options.feed_mm_min = 1000;
+  options.rapid_mm_min = 5000;
+  for (const double depth : {0.5, 20.0}) {
+    SCOPED_TRACE(depth);
+    ClearingLevel level = levelOf(region({rectangle(0, 0, 200, 10)}), region({rectangle(195, -5, 210, 15)}));
+    level.z = level.top - depth;
+    level.cleared.push_back({level.top, region({rectangle(-20, -20, 220, 30)})});
+    const Point2 tool(-5, 5);
+    level.from = Eigen::Vector3d(tool.x(), tool.y(), level.top);
+    // By time: the rapid to the far end and a plunge there, or a ramp forth and back at the near end.
+    const double drop = level.top + options.safe_height - level.z;
+    const double far_s = 60 * (205 / options.rapid_mm_min + drop / options.feed_mm_min);
+    const double near_s = 60 * 2 * drop / std::tan(options.ramp_angle_deg * kPi / 180) / options.feed_mm_min;
+    const bool near = near_s < far_s;
+    EXPECT_EQ(near, depth < 1);  // the two cases this test is for
+    ClearingStats stats;
+    const std::vector<ClearingPoint> moves = clearChecked(level, options, stats);
+    EXPECT_EQ(stats.passes, 1);
+    const auto first_cut = std::find_if(moves.begin(), moves.end(),
+                                        [](const ClearingPoint& m) { return m.move != ClearingMove::Rapid; });
+    ASSERT_NE(first_cut, moves.end());
+    EXPECT_LE(std::abs(xy(*first_cut).x() - (near ? 0.0 : 200.0)), 5.0);
+  }
+}
+
 TEST(ClearingPaths, RandomRegionsAreSound) {
   std::mt19937 random(11);
   std::uniform_real_distribution<double> unit(0, 1);

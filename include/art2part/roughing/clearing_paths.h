@@ -90,8 +90,8 @@ struct ClearingOptions {
 // boustrophedon passes: from the end of one, to the unused interval on the next line whose end that alternates the
 // direction is nearest, joined by a feed along a straight segment in `centre` or else along the ring between them
 // (round an island); where there is none, the pass ends and the next one starts at the lowest unused interval, after a
-// retract to the clearance plane, a rapid above the start and a rapid down to top + safe_height. A pass starts at an
-// end in `air` if it has one, and is entered there by a plunge; elsewhere by a ramp at ramp_angle_deg forth and back
+// retract to the clearance plane, a rapid above the start and a rapid down to top + safe_height. A pass is entered
+// at an end in `air` by a plunge; elsewhere by a ramp at ramp_angle_deg forth and back
 // along its first interval (or its first 0.5 mm, or a short segment in `centre`; failing all, a plunge counted in
 // plunges_into_stock), stopping where it reaches z and feeding back to the start. Then, if asked, each ring of
 // `centre` (perimeter at least min_segment), nearest first, followed once at z from its vertex nearest the tool:
@@ -101,8 +101,8 @@ struct ClearingOptions {
 // an air vertex (a plunge). With the contour pass every point of `centre` lies within stepover/2 (+ min_segment) of a
 // feed at z or of a ring edge in air, so every point of stock within the tool radius of `centre` is swept: a point
 // within r of a ring edge in air is no stock.
-// Pieces are taken nearest first, a piece's passes nearest first from either end (an end in air first if only one
-// is), each reached as `stay_down` says. Without stay_down the first point is a rapid at the clearance plane, the
+// Pieces are taken, and a piece's passes, cheapest start first: from either end, by the seconds of a straight rapid
+// from the tool and of the entry there (a plunge in air is quicker than a ramp), each reached as `stay_down` says. Without stay_down the first point is a rapid at the clearance plane, the
 // last a retract to it and sideways rapids are at the clearance plane only; with it, sideways rapids also run at the
 // heights that ClearedLevel and `top` prove clear, over the regions that prove it. A piece no point of which lies
 // farther than stepover/2 from its rings (a narrow band, as rest passes leave) gets no zig-zag when there is a

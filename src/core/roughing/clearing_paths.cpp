@@ -254,50 +254,48 @@ class PieceScan {
 
 // Moves at one level, with the entries, links and retracts between cuts.
 
-// The piece, among those with passes left, with a pass end nearest the tool (the first, for the first).
-std::size_t nextPiece(const std::vector<std::vector<Polyline>>& passes, const std::vector<bool>& done,
-                      const PathWriter& writer) {
-  std::size_t best = passes.size();
-  double best_distance = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < passes.size(); ++i) {
+// Whether each end of a pass lies in air (front, back).
+using AirEnds = std::pair<bool, bool>;
+
+// What starting a pass costs (PathWriter::startSeconds) at its cheaper end, and whether that is its back.
+std::pair<double, bool> startCost(const Polyline& pass, const AirEnds& air, const PathWriter& writer) {
+  const double front = writer.startSeconds(pass.front(), air.first), back = writer.startSeconds(pass.back(), air.second);
+  return {std::min(front, back), back < front};
+}
+
+// A piece's zig-zag passes, and whether each end lies in air (looked up once: the passes are weighed at each choice).
+struct PieceZigzag {
+  std::vector<Polyline> passes;
+  std::vector<AirEnds> air;
+};
+
+// The piece, among those with passes left, with the cheapest pass start (the first, for the first).
+std::size_t nextPiece(const std::vector<PieceZigzag>& pieces, const std::vector<bool>& done, const PathWriter& writer) {
+  std::size_t best = pieces.size();
+  double best_cost = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
     if (done[i]) continue;
-    for (const Polyline& pass : passes[i]) {
-      const double d = writer.placed() ? std::min((pass.front() - writer.at()).squaredNorm(),
-                                                  (pass.back() - writer.at()).squaredNorm())
-                                       : 0;
-      if (d < best_distance) best = i, best_distance = d;
+    for (std::size_t k = 0; k < pieces[i].passes.size(); ++k) {
+      const double cost = startCost(pieces[i].passes[k], pieces[i].air[k], writer).first;
+      if (cost < best_cost) best = i, best_cost = cost;
     }
   }
   return best;
 }
 
-// Whether each end of a pass lies in air (front, back).
-using AirEnds = std::pair<bool, bool>;
-
-// The unused pass with an end nearest the tool, turned to start there; an end in air comes first if only one is.
+// The unused pass with the cheapest start, turned to start there (startCost).
 Polyline nextPass(std::vector<Polyline>& passes, std::vector<bool>& used, const std::vector<AirEnds>& air,
                   const PathWriter& writer) {
   std::size_t best = passes.size();
-  double best_distance = std::numeric_limits<double>::infinity();
-  bool best_reversed = false;
+  std::pair<double, bool> best_cost{std::numeric_limits<double>::infinity(), false};
   for (std::size_t k = 0; k < passes.size(); ++k) {
     if (used[k]) continue;
-    const Polyline& pass = passes[k];
-    const auto [front_air, back_air] = air[k];
-    bool reversed = false;
-    double d = 0;
-    if (writer.placed()) {
-      const double to_front = (pass.front() - writer.at()).squaredNorm();
-      const double to_back = (pass.back() - writer.at()).squaredNorm();
-      reversed = to_back < to_front;
-      d = std::min(to_front, to_back);
-    }
-    if (front_air != back_air) reversed = back_air;
-    if (d < best_distance) best = k, best_distance = d, best_reversed = reversed;
+    const std::pair<double, bool> cost = startCost(passes[k], air[k], writer);
+    if (cost.first < best_cost.first) best = k, best_cost = cost;
   }
   used[best] = true;
   Polyline pass = std::move(passes[best]);
-  if (best_reversed) std::reverse(pass.begin(), pass.end());
+  if (best_cost.second) std::reverse(pass.begin(), pass.end());
   return pass;
 }
 
@@ -309,19 +307,20 @@ bool coveredByContour(const RegionPiece& piece, const ClearingOptions& options) 
 void cutZigzag(const std::vector<RegionPiece>& pieces, const ClearingLevel& level, const ClearingOptions& options,
                PathWriter& writer, ClearingStats& stats) {
   const ScanFrame frame(options.angle_deg);
-  std::vector<std::vector<Polyline>> passes;
-  for (const RegionPiece& piece : pieces)
-    passes.push_back(coveredByContour(piece, options) ? std::vector<Polyline>{}
-                                                      : PieceScan(piece.rings, frame, options).passes());
-  std::vector<bool> done(passes.size(), false);
-  for (std::size_t i = nextPiece(passes, done, writer); i < passes.size(); i = nextPiece(passes, done, writer)) {
+  const RegionLocator in_air(level.air);
+  std::vector<PieceZigzag> zigzags(pieces.size());
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    if (coveredByContour(pieces[i], options)) continue;
+    zigzags[i].passes = PieceScan(pieces[i].rings, frame, options).passes();
+    for (const Polyline& pass : zigzags[i].passes)
+      zigzags[i].air.emplace_back(in_air.contains(pass.front()), in_air.contains(pass.back()));
+  }
+  std::vector<bool> done(zigzags.size(), false);
+  for (std::size_t i = nextPiece(zigzags, done, writer); i < zigzags.size(); i = nextPiece(zigzags, done, writer)) {
     done[i] = true;
-    std::vector<bool> used(passes[i].size(), false);
-    std::vector<AirEnds> air;  // looked up once: nextPass weighs every unused pass at each choice
-    for (const Polyline& pass : passes[i])
-      air.emplace_back(regionContains(level.air, pass.front()), regionContains(level.air, pass.back()));
-    for (std::size_t n = 0; n < passes[i].size(); ++n) {
-      const Polyline pass = nextPass(passes[i], used, air, writer);
+    std::vector<bool> used(zigzags[i].passes.size(), false);
+    for (std::size_t n = 0; n < zigzags[i].passes.size(); ++n) {
+      const Polyline pass = nextPass(zigzags[i].passes, used, zigzags[i].air, writer);
       if (!writer.linkTo(pass.front(), options.stay_down, writer.entrySeconds(pass.front()))) writer.enterPass(pass);
       for (const Point2& p : pass) writer.feed(p);
       ++stats.passes;

@@ -118,11 +118,17 @@ class PathWriter {
   }
 
   // Seconds to reach the level from the safe height at `start`: a plunge in air, else a ramp forth and back.
-  double entrySeconds(const Point2& start) const {
+  double entrySeconds(const Point2& start) const { return entrySeconds(regionContains(level_.air, start)); }
+  double entrySeconds(bool in_air) const {
     const double drop = safe_z_ - level_.z;
     if (drop <= 0) return 0;
-    if (regionContains(level_.air, start)) return 60 * drop / feed_;
+    if (in_air) return 60 * drop / feed_;
     return 60 * 2 * (drop / slope_) / feed_;
+  }
+  // What starting a cut at `start` costs, in seconds, to choose the next cut by: the way there straight at the rapid
+  // rate (0 before the first move) and the entry (`in_air`: a plunge, else a ramp).
+  double startSeconds(const Point2& start, bool in_air) const {
+    return (placed() ? 60 * (start - at()).norm() / rapid_ : 0.0) + entrySeconds(in_air);
   }
 
   // Down to the level at the start of an open pass: a plunge in air, else a ramp forth and back along the pass's
