@@ -1,7 +1,10 @@
 // Finishing keeps clear of what stands: the stock roughing left along a direction that is no setup's own
-// (stock_after_roughing.h), and the part between the holes of one helical milling run (helixPaths). Both were found
-// on ANC101 in 5-axis mode (1 gouge and 4,819 collisions, all in finishing).
+// (stock_after_roughing.h), the part between the holes of one helical milling run (helixPaths), and what stands
+// between the holes of a drilling run crossed low (hole_links.h). The first two were found on ANC101 in 5-axis mode
+// (1 gouge and 4,819 collisions, all in finishing).
 #include "art2part/finishing/stock_after_roughing.h"
+
+#include "art2part/finishing/hole_links.h"
 
 #include <gtest/gtest.h>
 
@@ -129,3 +132,63 @@ TEST(HelixPaths, ARunOfHolesAtDifferentHeightsTraversesLevelOverAllOfThem) {
   EXPECT_EQ(report.collisions, 0);
 }
 
+
+// Three holes drilled in one run: two in one face, the third beyond a rib standing 20 mm over it. Over the stock
+// (here the part alone: nothing left to rough), the drill crosses between the first two at their R planes and lifts
+// over the rib only for the third (linkOverStock); at the clearance level every crossing went up 23 mm and down again.
+// The simulation finds no gouge and no collision of drill, shank or holder.
+TEST(HoleLinks, ARunCrossesLowOverOpenGroundAndLiftsOverWhatStands) {
+  TopoDS_Shape shape = solidBox({0, 0, 0}, {200, 40, 60});
+  shape = cut(shape, solidBox({-1, -1, 40}, {95, 41, 61}));
+  shape = cut(shape, solidBox({105, -1, 40}, {201, 41, 61}));
+  for (const double x : {20.0123, 60.0123, 160.0123})
+    shape = cut(shape, solidCylinder({x, 20.0377, 30}, Vec3::UnitZ(), 3, 11));
+  const Part part = stepPart(shape, "drilled_rib_block");
+  std::vector<Hole> holes = findHoles(part);
+  ASSERT_EQ(holes.size(), 3u);
+  std::sort(holes.begin(), holes.end(), [](const Hole& a, const Hole& b) { return a.mouth.x() < b.mouth.x(); });
+  const ToolLibrary library = loadToolLibrary(std::string(ART2PART_SOURCE_DIR) + "/config/tools.yaml");
+  const Tool* drill = library.find("drill6");
+  ASSERT_NE(drill, nullptr);
+  const double rib_top = 60, clearance = 5, margin = 0.5;
+  const double clearance_above = rib_top + clearance - 40;
+
+  StockAfterRoughing stock(part, part.mesh, RoughingPlan{}, library);
+  const SetupFrame frame = setupFrame(part, Vec3::UnitZ());
+  const HoleLink link = linkOverStock(stock.slabs(0, frame), frame, *drill, margin);
+  const Toolpath low = drillingPath(holes, *drill, false, 0, clearance_above, {}, link);
+  const Toolpath high = drillingPath(holes, *drill, false, 0, clearance_above);
+
+  // The sideways rapids: one between each pair of holes, level; the first low, the second over the rib.
+  std::vector<double> crossings;
+  for (std::size_t i = 1; i < low.size(); ++i) {
+    const Vec3 d = low[i].tip - low[i - 1].tip;
+    if (low[i].move != MoveKind::Rapid || std::hypot(d.x(), d.y()) < 1e-6) continue;
+    EXPECT_NEAR(d.z(), 0, 1e-9) << "a slanted rapid at point " << i;
+    crossings.push_back(low[i].tip.z());
+  }
+  ASSERT_EQ(crossings.size(), 2u);
+  const double r_plane = 40 + HoleOptions{}.retract_height;
+  EXPECT_LT(crossings[0], r_plane + 2) << "over the open face between the first two holes";
+  EXPECT_GE(crossings[1], rib_top + margin) << "over the rib to the third";
+  EXPECT_LT(crossings[1], rib_top + clearance);
+  const auto rapidLength = [](const Toolpath& path) {
+    double length = 0;
+    for (std::size_t i = 1; i < path.size(); ++i)
+      if (path[i].move == MoveKind::Rapid) length += (path[i].tip - path[i - 1].tip).norm();
+    return length;
+  };
+  EXPECT_LT(rapidLength(low), rapidLength(high) - 40);
+
+  std::vector<HoleMachining> methods(holes.size());
+  for (HoleMachining& m : methods) m.method = HoleMethod::Drill;
+  const Mesh plugs = holePlugs(holes, methods);
+  VerifyOptions options;
+  options.resolution = 0.25;
+  options.stock_mesh = &plugs;
+  Toolpath run = low;
+  for (CutterLocation& point : run) point.op = 0;
+  const VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, run, {*drill}, options);
+  EXPECT_EQ(report.gouges, 0) << report.worst_gouge_mm;
+  EXPECT_EQ(report.collisions, 0);
+}

@@ -675,6 +675,30 @@ TEST(Post, DrillingRunsBecomeCannedCyclesThatRs274ExpandsIntoOurSteps) {
   }
 }
 
+// A drilling run that crosses between holes at their R planes' height (hole_links.h, over open ground) instead of
+// going up to the clearance level: each hole is still one cycle, the crossing its first move (X Y at the height it
+// starts from), and rs274 runs exactly the toolpath's motion.
+TEST(Post, ACycleEnteredAcrossAtItsRPlanesHeightIsStillOneCycle) {
+  const Machine machine = machineNamed("mill_3axis");
+  Toolpath path;
+  const Vec3 axis = Vec3::UnitZ();
+  const std::vector<Vec3> mouths{Vec3(0, 0, 20), Vec3(15, 5, 20), Vec3(30, 0, 20)};
+  path.push_back(point(0, 0, "drill6.8", MoveKind::Rapid, mouths[0] + 10 * axis, axis));
+  for (const Vec3& mouth : mouths) {
+    path.push_back(point(0, 0, "drill6.8", MoveKind::Rapid, mouth + 2 * axis, axis));
+    path.push_back(point(0, 0, "drill6.8", MoveKind::Feed, mouth - 8 * axis, axis));
+    path.push_back(point(0, 0, "drill6.8", MoveKind::Rapid, mouth + 2 * axis, axis));
+  }
+  path.push_back(point(0, 0, "drill6.8", MoveKind::Rapid, mouths.back() + 10 * axis, axis));
+  const MachineProgram program = buildMachineProgram(machine, path, drillingTools(), "drilled", turnedSetupOne());
+  const std::string job = jobProgramText(program);
+  EXPECT_EQ(countOf(job, "G99 G81 "), 3) << job;
+  std::size_t cycles = 0;
+  for (const SetupProgram& setup : program.setups) cycles += setup.cycles.size();
+  EXPECT_EQ(cycles, 3u);
+  checkAgainstToolpath(program, path, expectAccepted(job, program, "drilling_across"), allSetups(program));
+}
+
 TEST(Post, FiveAxisModeAndCyclesOffKeepPlainMoves) {
   const Machine machine = machineNamed("trunnion_ac");
   PostOptions five = turnedSetupOne();

@@ -15,6 +15,7 @@
 // chooseHoleMethod keeps the whole tool (flutes, shank, holder) inside those bounds and inside the hole at full depth.
 #pragma once
 
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -159,30 +160,38 @@ HoleMachining chooseHoleMethod(const Hole& hole, const ToolLibrary& library, con
 // Throws InputError when methods and holes differ in number.
 Mesh holePlugs(const std::vector<Hole>& holes, const std::vector<HoleMachining>& methods);
 
+// The height, along a run's axis as Vec3::dot(axis) measures it, at which the tool may cross straight from over the
+// R plane point `from` to over `to`: in [lowest, level], `level` where nothing lower is proven clear. The run's
+// drill goes up its hole's axis to that height, across, and down the next one's: the columns over the R planes up to
+// the clearance level are the holes' own to keep clear (chooseHoleMethod, StockAfterRoughing::clearOverHole).
+using HoleLink = std::function<double(const Vec3& from, const Vec3& to, double lowest, double level)>;
+// Every crossing at the clearance level.
+double linkAtClearanceLevel(const Vec3& from, const Vec3& to, double lowest, double level);
+
 // The cutter locations of one group of holes (same method and tool) made with `tool` in setup `setup` whose direction
-// is the holes' axis: in the order given (travelOrder's is the caller's choice), for each a rapid at
-// the clearance height over it, a rapid down to the R plane above its mouth (retract_height), a feed straight down the
-// axis to the depth, a rapid back to the R plane and up to the clearance height (`clearance_above` mm over the highest
-// mouth along the axis, raised over the part's material measured round the holes, free_radius, + holder_margin; the
-// rapids between holes cross what lies farther than clearance_radius from every axis: the caller passes enough to
-// clear the part there, e.g. the setup's stock top + its clearance - the highest mouth). The depth: the drill's tip as chooseHoleMethod puts it (tip_depth: the cone's apex or the
+// is the holes' axis: in the order given (travelOrder's is the caller's choice), for each a rapid down to the R plane
+// above its mouth (retract_height), a feed straight down the axis to the depth, a rapid back to the R plane. The run
+// starts and ends at the clearance level (`clearance_above` mm over the highest mouth along the axis, raised over the
+// part's material measured round the holes, free_radius, + holder_margin: the caller passes enough to clear the part
+// beyond clearance_radius, e.g. the setup's stock top + its clearance - the highest mouth); between holes the tool
+// goes up to the height `link` gives, across and down (by default at the clearance level). The depth: the drill's tip as chooseHoleMethod puts it (tip_depth: the cone's apex or the
 // shoulder at the bore's end, whichever is shallower, for a cone bottom; the floor for a flat one; the far end + point
 // length + breakthrough, within free_beyond less holder_margin, for a through hole); `spot`: spotDepth. The post turns
-// each such run into G81 / G83 (G98: back to the clearance height). Throws InputError when the holes' axes differ by
-// more than axis_tolerance_deg, or `tool` is not a drill.
+// each hole into G81 / G83 (G98 back to the height the tool came down from when it leaves at that height, else G99).
+// Throws InputError when the holes' axes differ by more than axis_tolerance_deg, or `tool` is not a drill.
 Toolpath drillingPath(const std::vector<Hole>& holes, const Tool& tool, bool spot, int setup, double clearance_above,
-                      const HoleOptions& options = {});
+                      const HoleOptions& options = {}, const HoleLink& link = linkAtClearanceLevel);
 // Helical milling of one hole with a flat end mill: from the clearance height (as drillingPath's) down to the R plane
-// over the centre, out
-// to radius (bore - tool) / 2, down a helix of helix_pitch_ratio x D per turn to the floor (a through hole: the far end
-// + breakthrough, within free_beyond less holder_margin), a full circle there, back to the centre, up. Chords inside
-// the circle by at most helix_chord. Throws InputError for a tool that is not a flat end mill narrower than the bore.
+// over the centre, out to radius (bore - tool) / 2, down a helix of helix_pitch_ratio x D per turn to the floor (a
+// through hole: the far end + breakthrough, within free_beyond less holder_margin), a full circle there, back to the
+// centre, up. Chords inside the circle by at most helix_chord. Throws InputError for a tool that is not a flat end
+// mill narrower than the bore.
 Toolpath helixPath(const Hole& hole, const Tool& tool, int setup, double clearance_above, const HoleOptions& options = {});
-// Helical milling of `holes` (one axis) one after the other, every one from and back to drillingPath's one clearance
-// level over them all: the rapids between holes run level at it, never slanted from a high mouth's level down to a low
-// one's through what stands between. Throws as drillingPath and helixPath do.
+// Helical milling of `holes` (one axis) one after the other, from and back to drillingPath's one clearance level over
+// them all, crossing between holes as drillingPath does: level at the height `link` gives, never slanted from a high
+// mouth's level down to a low one's through what stands between. Throws as drillingPath and helixPath do.
 Toolpath helixPaths(const std::vector<Hole>& holes, const Tool& tool, int setup, double clearance_above,
-                    const HoleOptions& options = {});
+                    const HoleOptions& options = {}, const HoleLink& link = linkAtClearanceLevel);
 
 // Depths below the mouth that the tools' tips reach (what drillingPath and helixPath cut to, and chooseHoleMethod
 // checks). A drill: a cone bottom's apex or, when shallower, the depth that puts the drill's shoulder at the bore's end

@@ -21,9 +21,10 @@
 // to zero and cancel G92).
 //
 // Drilling (3+2 and 3-axis only): a drill's run in toolpaths.csv of a rapid to a point (the R plane), a feed straight
-// down the tool axis, a rapid back up to that point, reached from straight above it, becomes one canned cycle: G81,
+// down the tool axis, a rapid back up to that point, reached from straight above it or across at its height (the
+// cycle's own first move, X Y at the height it starts from), becomes one canned cycle: G81,
 // or G83 pecking Q = the drill's max_stepdown (its diameter when 0) when the feed is longer than peck_ratio x its
-// diameter; G98 when the next point is a rapid straight back up to where the cycle began (the clearance height), G99
+// diameter; G98 when the next point is a rapid straight back up to where the cycle began (over the R plane), G99
 // otherwise. The program's steps are the cycle's motion exactly as rs274ngc expands it (the XY move at the start Z,
 // even of zero length, the Z move to R, the feed, G83's pecks: back to R, down again to 0.254 mm above the last depth,
 // the retract), each tagged with the cycle, so the trajectory times what the controller runs. 5-axis mode keeps G0/G1.

@@ -19,6 +19,7 @@
 #include "art2part/finishing/admissible.h"
 #include "art2part/finishing/face_assignment.h"
 #include "art2part/finishing/planar_finishing.h"
+#include "art2part/finishing/hole_links.h"
 #include "art2part/finishing/stock_after_roughing.h"
 #include "art2part/geometry/solid_closure.h"
 #include "art2part/geometry/travel_order.h"
@@ -211,11 +212,14 @@ bool setupsOwnDirection(const Setup& setup, const Vec3& d) { return d.dot(setup.
 
 // What roughing left in the group's frame: the setup's slabs when the group's direction is the setup's own, else
 // the in-process model's along it (a 5-axis plan's tilted directions).
+std::vector<SlabState> stockLeftAlong(const Context& c, int setup_index, const Vec3& direction) {
+  const Setup& setup = c.in.setups.setups[setup_index];
+  if (setupsOwnDirection(setup, direction) && setup_index < static_cast<int>(c.in.roughing.stock_left.size()))
+    return c.in.roughing.stock_left[setup_index];
+  return c.after_roughing.slabs(setup_index, frameFor(c.in.part, setup, direction));
+}
 std::vector<SlabState> stockLeftAlong(const Context& c, const Group& group) {
-  const Setup& setup = c.in.setups.setups[group.setup];
-  if (setupsOwnDirection(setup, group.direction) && group.setup < static_cast<int>(c.in.roughing.stock_left.size()))
-    return c.in.roughing.stock_left[group.setup];
-  return c.after_roughing.slabs(group.setup, frameFor(c.in.part, setup, group.direction));
+  return stockLeftAlong(c, group.setup, group.direction);
 }
 
 double surfaceSkin(const FinishingOptions& options) { return std::max(options.surface.skin, options.allowance); }
@@ -367,6 +371,12 @@ void makeHoles(const Context& c, const std::vector<FaceAssignment>& assignment, 
     for (int h : group) mouth = std::max(mouth, holes[h].mouth.dot(d));
     return std::max(c.options.holes.retract_height, top + c.options.clearance - mouth);
   };
+  // Between the holes of a run, the lowest crossing the stock roughing left proves clear (hole_links.h).
+  auto linkFor = [&](int setup, const std::vector<int>& group, const Tool& tool) {
+    const Vec3 axis = holes[group.front()].axis.normalized();
+    return linkOverStock(stockLeftAlong(c, setup, axis), frameFor(part, c.in.setups.setups[setup], axis), tool,
+                         c.options.tools.holder_margin);
+  };
   auto drillRun = [&](int setup, const std::vector<int>& group, const Tool& tool, bool spot) {
     std::vector<Hole> list;
     for (int h : group) list.push_back(holes[h]);
@@ -375,7 +385,7 @@ void makeHoles(const Context& c, const std::vector<FaceAssignment>& assignment, 
     op.kind = FinishingKind::Drill;
     op.tool = tool.id;
     op.direction = list.front().axis;
-    op.path = drillingPath(list, tool, spot, setup, clearanceAbove(group), c.options.holes);
+    op.path = drillingPath(list, tool, spot, setup, clearanceAbove(group), c.options.holes, linkFor(setup, group, tool));
     for (int h : group) op.faces.insert(op.faces.end(), holes[h].bore_faces.begin(), holes[h].bore_faces.end());
     if (spot) op.note = "spot drilling";
     return op;
@@ -402,7 +412,7 @@ void makeHoles(const Context& c, const std::vector<FaceAssignment>& assignment, 
         op.faces.insert(op.faces.end(), holes[h].bore_faces.begin(), holes[h].bore_faces.end());
         list.push_back(holes[h]);
       }
-      op.path = helixPaths(list, *tool, setup, clearanceAbove(group), c.options.holes);
+      op.path = helixPaths(list, *tool, setup, clearanceAbove(group), c.options.holes, linkFor(setup, group, *tool));
     } else {
       op = drillRun(setup, group, *tool, false);
     }

@@ -81,7 +81,59 @@ Vec3 runAxis(const std::vector<Hole>& holes, const std::string& what, const Hole
   return axis;
 }
 
+// One run of holes along `axis`: from `level` over the first hole down to its R plane, `visit` (its moves from the R
+// plane back to it), then to each next hole up to the height `link` gives (never under either R plane nor over
+// `level`), across and down to its R plane; back up to `level` at the end.
+template <class Visit>
+void holeRun(const std::vector<Hole>& holes, const Vec3& axis, double level, const HoleLink& link, int setup,
+             const std::string& tool, const HoleOptions& options, Toolpath& path, Visit visit) {
+  const auto over = [&](const Hole& hole, double height) {
+    return Vec3(hole.mouth + (height - hole.mouth.dot(axis)) * axis);
+  };
+  const auto rapid = [&](const Vec3& to) { push(path, cutterLocation(setup, tool, MoveKind::Rapid, to, axis)); };
+  for (std::size_t h = 0; h < holes.size(); ++h) {
+    const Vec3 r_plane = holes[h].mouth + options.retract_height * axis;
+    if (h == 0) {
+      rapid(over(holes[h], level));
+    } else {
+      const Vec3 before = holes[h - 1].mouth + options.retract_height * axis;
+      const double lowest = std::max(before.dot(axis), r_plane.dot(axis));
+      const double height = std::clamp(link(before, r_plane, lowest, level), lowest, std::max(lowest, level));
+      rapid(over(holes[h - 1], height));
+      rapid(over(holes[h], height));
+    }
+    rapid(r_plane);
+    visit(holes[h], r_plane);
+  }
+  rapid(over(holes.back(), level));
+}
+
+// A helix from the R plane: out to radius (bore - tool) / 2, down helix_pitch_ratio x D per turn (counter-clockwise
+// seen from the spindle: climb milling inside a bore), one turn at the floor, back to the centre and up to the R plane.
+void helixDown(const Hole& hole, const Tool& tool, int setup, const Vec3& axis, const Vec3& r_plane,
+               const HoleOptions& options, Toolpath& path) {
+  Vec3 u, v;
+  orthonormalPair(axis, u, v);
+  const double offset = 0.5 * (hole.diameter - tool.diameter), depth = helixDepth(hole, options);
+  const double pitch = options.helix_pitch_ratio * tool.diameter;
+  const int sides = sidesFor(offset, options.helix_chord, kHelixMinSides);
+  const auto at = [&](double angle, double below_r_plane) {
+    return Vec3(r_plane - below_r_plane * axis + offset * (std::cos(angle) * u + std::sin(angle) * v));
+  };
+  const auto feed = [&](const Vec3& to) { push(path, cutterLocation(setup, tool.id, MoveKind::Feed, to, axis)); };
+  feed(at(0, 0));
+  const double drop = options.retract_height + depth;
+  const int steps = std::max(1, static_cast<int>(std::ceil(drop / pitch * sides)));
+  for (int j = 1; j <= steps; ++j) feed(at(2 * kPi * j / sides, drop * j / steps));
+  const double end_angle = 2 * kPi * steps / sides;
+  for (int j = 1; j <= sides; ++j) feed(at(end_angle + 2 * kPi * j / sides, drop));
+  feed(hole.mouth - depth * axis);
+  push(path, cutterLocation(setup, tool.id, MoveKind::Rapid, r_plane, axis));
+}
+
 }  // namespace
+
+double linkAtClearanceLevel(const Vec3&, const Vec3&, double, double level) { return level; }
 
 Mesh holePlugs(const std::vector<Hole>& holes, const std::vector<HoleMachining>& methods) {
   if (holes.size() != methods.size())
@@ -101,72 +153,39 @@ Mesh holePlugs(const std::vector<Hole>& holes, const std::vector<HoleMachining>&
 }
 
 Toolpath drillingPath(const std::vector<Hole>& holes, const Tool& tool, bool spot, int setup, double clearance_above,
-                      const HoleOptions& options) {
+                      const HoleOptions& options, const HoleLink& link) {
   if (tool.type != ToolType::Drill) throw InputError("drillingPath: tool '" + tool.id + "' is not a drill");
   Toolpath path;
   if (holes.empty()) return path;
   const Vec3 axis = runAxis(holes, "drillingPath", options);
   const double level = clearanceLevel(holes, axis, clearance_above, options);
-  for (const Hole& hole : holes) {
+  holeRun(holes, axis, level, link, setup, tool.id, options, path, [&](const Hole& hole, const Vec3& r_plane) {
     const double depth = spot ? spotDepth(hole, tool, options) : drillDepth(hole, tool, options);
-    const Vec3 above = hole.mouth + (level - hole.mouth.dot(axis)) * axis;
-    const Vec3 r_plane = hole.mouth + options.retract_height * axis;
-    push(path, cutterLocation(setup, tool.id, MoveKind::Rapid, above, axis));
-    push(path, cutterLocation(setup, tool.id, MoveKind::Rapid, r_plane, axis));
     push(path, cutterLocation(setup, tool.id, MoveKind::Feed, hole.mouth - depth * axis, axis));
     push(path, cutterLocation(setup, tool.id, MoveKind::Rapid, r_plane, axis));
-    push(path, cutterLocation(setup, tool.id, MoveKind::Rapid, above, axis));
-  }
+  });
   return path;
 }
 
 Toolpath helixPath(const Hole& hole, const Tool& tool, int setup, double clearance_above, const HoleOptions& options) {
-  if (tool.type != ToolType::Flat || !(tool.diameter < hole.diameter))
-    throw InputError("helixPath: tool '" + tool.id + "' is not a flat end mill narrower than the " +
-                     std::to_string(hole.diameter) + " mm hole");
-  if (!(options.helix_pitch_ratio > 0) || !(options.helix_chord > 0))
-    throw InputError("helixPath: helix_pitch_ratio and helix_chord must be positive");
-  const Vec3 axis = hole.axis.normalized();
-  Vec3 u, v;
-  orthonormalPair(axis, u, v);
-  const double offset = 0.5 * (hole.diameter - tool.diameter), depth = helixDepth(hole, options);
-  const double pitch = options.helix_pitch_ratio * tool.diameter;
-  const int sides = sidesFor(offset, options.helix_chord, kHelixMinSides);
-  const double level = clearanceLevel({hole}, axis, clearance_above, options);
-  const Vec3 r_plane = hole.mouth + options.retract_height * axis;
-  const auto at = [&](double angle, double below_r_plane) {
-    return Vec3(r_plane - below_r_plane * axis + offset * (std::cos(angle) * u + std::sin(angle) * v));
-  };
-  Toolpath path;
-  push(path, cutterLocation(setup, tool.id, MoveKind::Rapid, hole.mouth + (level - hole.mouth.dot(axis)) * axis, axis));
-  push(path, cutterLocation(setup, tool.id, MoveKind::Rapid, r_plane, axis));
-  push(path, cutterLocation(setup, tool.id, MoveKind::Feed, at(0, 0), axis));
-  // Down the helix (counter-clockwise seen from the spindle: climb milling inside a bore), then one turn at the floor.
-  const double drop = options.retract_height + depth;
-  const int steps = std::max(1, static_cast<int>(std::ceil(drop / pitch * sides)));
-  for (int j = 1; j <= steps; ++j)
-    push(path, cutterLocation(setup, tool.id, MoveKind::Feed, at(2 * kPi * j / sides, drop * j / steps), axis));
-  const double end_angle = 2 * kPi * steps / sides;
-  for (int j = 1; j <= sides; ++j)
-    push(path, cutterLocation(setup, tool.id, MoveKind::Feed, at(end_angle + 2 * kPi * j / sides, drop), axis));
-  push(path, cutterLocation(setup, tool.id, MoveKind::Feed, hole.mouth - depth * axis, axis));
-  push(path, cutterLocation(setup, tool.id, MoveKind::Rapid, r_plane, axis));
-  push(path, cutterLocation(setup, tool.id, MoveKind::Rapid, hole.mouth + (level - hole.mouth.dot(axis)) * axis, axis));
-  return path;
+  return helixPaths({hole}, tool, setup, clearance_above, options);
 }
 
 Toolpath helixPaths(const std::vector<Hole>& holes, const Tool& tool, int setup, double clearance_above,
-                    const HoleOptions& options) {
+                    const HoleOptions& options, const HoleLink& link) {
+  for (const Hole& hole : holes)
+    if (tool.type != ToolType::Flat || !(tool.diameter < hole.diameter))
+      throw InputError("helixPath: tool '" + tool.id + "' is not a flat end mill narrower than the " +
+                       std::to_string(hole.diameter) + " mm hole");
+  if (!(options.helix_pitch_ratio > 0) || !(options.helix_chord > 0))
+    throw InputError("helixPath: helix_pitch_ratio and helix_chord must be positive");
   Toolpath path;
   if (holes.empty()) return path;
   const Vec3 axis = runAxis(holes, "helixPaths", options);
-  // helixPath's level for a hole is the higher of its mouth + max(clearance_above, retract_height) and its material +
-  // holder_margin, both at or under `level`: so each hole's run starts and ends at `level` exactly.
   const double level = clearanceLevel(holes, axis, clearance_above, options);
-  for (const Hole& hole : holes) {
-    const Toolpath one = helixPath(hole, tool, setup, level - hole.mouth.dot(axis), options);
-    for (const CutterLocation& point : one) push(path, point);
-  }
+  holeRun(holes, axis, level, link, setup, tool.id, options, path, [&](const Hole& hole, const Vec3& r_plane) {
+    helixDown(hole, tool, setup, axis, r_plane, options, path);
+  });
   return path;
 }
 

@@ -16,9 +16,11 @@ constexpr double kSameZ = 1e-6;    // mm
 // rs274ngc's G83: after each peck it rapids back down to 0.010 inch above the depth reached (G83_RAPID_DELTA).
 constexpr double kG83RapidDelta = 0.010 * 25.4;
 
+bool sameRotaries(const JointPosition& a, const JointPosition& b) { return a.tilt == b.tilt && a.rotary == b.rotary; }
+
 bool sameXy(const JointPosition& a, const JointPosition& b) {
   return std::abs(a.linear.x() - b.linear.x()) < kSameXy && std::abs(a.linear.y() - b.linear.y()) < kSameXy &&
-         a.tilt == b.tilt && a.rotary == b.rotary;
+         sameRotaries(a, b);
 }
 
 // A value as the interpreter reads it back from the program (the writer prints 4 decimals).
@@ -37,8 +39,12 @@ int planDrillingCycle(ProgramBuilder& builder, const FixedOrientation& orientati
   const JointPosition r_plane = orientation.jointsFor(path[row].tip);
   const JointPosition bottom = orientation.jointsFor(path[row + 1].tip);
   const JointPosition back = orientation.jointsFor(path[row + 2].tip);
-  // Straight down the spindle from where the tool stands above the R plane, and back up to it.
-  if (!sameXy(start, r_plane) || !sameXy(r_plane, bottom) || !sameXy(r_plane, back) ||
+  // Straight down the spindle from where the tool stands above the R plane, or from across at the R plane's height
+  // (the cycle's own first move: X Y at the height it starts from), and back up to the R plane.
+  const bool above = sameXy(start, r_plane);
+  const bool across = sameRotaries(start, r_plane) && std::abs(start.linear.z() - r_plane.linear.z()) < kSameZ;
+  if (!(above || across) || !sameXy(r_plane, bottom) ||
+      !sameXy(r_plane, back) ||
       std::abs(back.linear.z() - r_plane.linear.z()) > kSameZ || !(bottom.linear.z() < r_plane.linear.z() - kSameZ) ||
       start.linear.z() < r_plane.linear.z() - kSameZ)
     return row;
@@ -83,10 +89,11 @@ int planDrillingCycle(ProgramBuilder& builder, const FixedOrientation& orientati
     if (move == MoveKind::Feed) s.feed_mm_min = cycle.feed_mm_min;
     builder.cycleStep(s, index);
   };
-  // Preliminary motion: X Y at the start height (no length here, but the interpreter makes the move), then down to R.
+  // Preliminary motion: X Y at the start height (no length when the tool stands above the R plane, but the interpreter
+  // makes the move; from across, the toolpath's own rapid to the R plane), then down to R.
   JointPosition over = r_plane;
   over.linear.z() = start.linear.z();
-  step(MoveKind::Rapid, over, row, false);
+  step(MoveKind::Rapid, over, row, !above);
   if (std::abs(start.linear.z() - r_plane.linear.z()) > kSameZ) step(MoveKind::Rapid, r_plane, row, true);
   if (cycle.peck > 0) {
     // G83: for (d = r - q; d > z; d -= q) { feed to d; rapid to r; rapid to d + delta }, then the last feed.
