@@ -510,6 +510,27 @@ std::vector<SlabState> slabsWithTower(const SetupFrame& frame, const Vec3& lo, c
   return slabs;
 }
 
+// The plans made knowing only the part (`blind`) and knowing the stock roughing left (`aware`), each simulated
+// against that stock at 0.25 mm (the shank meets it by millimetres): neither gouges; the blind one collides (the case
+// is real), the aware one does not.
+void expectOnlyTheBlindPlanCollides(const Part& part, const Mesh& stock, const Tool& tool,
+                                    const SurfaceFinishingResult& blind, const SurfaceFinishingResult& aware) {
+  VerifyOptions vo;
+  vo.stock_mesh = &stock;
+  vo.resolution = 0.25;
+  for (const auto* r : {&blind, &aware}) {
+    const VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, r->path, {tool}, vo);
+    std::printf("%s: planned %.0f mm2, skipped %.0f; verified: %d gouges, %d collisions (worst %.2f mm)\n",
+                r == &blind ? "part only" : "with the stock left", r->planned_area_mm2, r->skipped_area_mm2,
+                report.gouges, report.collisions, report.worst_collision_mm);
+    EXPECT_EQ(report.gouges, 0);
+    if (r == &blind)
+      EXPECT_GT(report.collisions, 0);
+    else
+      EXPECT_EQ(report.collisions, 0);
+  }
+}
+
 }  // namespace
 
 TEST(SurfaceFinishing, ShankAndHolderKeepClearOfTheStockRoughingLeft) {
@@ -532,21 +553,7 @@ TEST(SurfaceFinishing, ShankAndHolderKeepClearOfTheStockRoughingLeft) {
   const SurfaceFinishingResult aware = finishSurfaces3Axis(
       part, spheres, frame, tool, 0, options,
       stockBeyondSkin(slabs, options.skin, toFrame(part.mesh.vertices, frame), part.mesh.triangles));
-  const double area = part.faces[spheres[0]].area;
-  VerifyOptions vo;
-  vo.stock_mesh = &stock.mesh;
-  vo.resolution = 0.25;  // the shank meets the tower by millimetres
-  for (const auto* r : {&blind, &aware}) {
-    const VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, r->path, {tool}, vo);
-    std::printf("%s: planned %.0f of %.0f mm2, skipped %.0f; verified: %d gouges, %d collisions (worst %.2f mm)\n",
-                r == &blind ? "part only" : "with the stock left", r->planned_area_mm2, area, r->skipped_area_mm2,
-                report.gouges, report.collisions, report.worst_collision_mm);
-    EXPECT_EQ(report.gouges, 0);
-    if (r == &blind)
-      EXPECT_GT(report.collisions, 0);  // the case is real
-    else
-      EXPECT_EQ(report.collisions, 0);
-  }
+  expectOnlyTheBlindPlanCollides(part, stock.mesh, tool, blind, aware);
   EXPECT_GT(aware.skipped_area_mm2, 20);
   // The dome away from the tower is still finished: its far half at least.
   EXPECT_GT(aware.planned_area_mm2, 0.5 * blind.planned_area_mm2);
@@ -593,20 +600,7 @@ TEST(SurfaceFinishing, AThinPillarOfStockApartFromThePartIsKeptWholeAndClearOf) 
 
   const SurfaceFinishingResult blind = finishSurfaces3Axis(part, spheres, frame, tool, 0, options);
   const SurfaceFinishingResult aware = finishSurfaces3Axis(part, spheres, frame, tool, 0, options, beyond);
-  VerifyOptions vo;
-  vo.stock_mesh = &stock.mesh;
-  vo.resolution = 0.25;
-  for (const auto* r : {&blind, &aware}) {
-    const VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, r->path, {tool}, vo);
-    std::printf("%s: planned %.0f mm2, skipped %.0f; verified: %d gouges, %d collisions (worst %.2f mm)\n",
-                r == &blind ? "part only" : "with the pillar", r->planned_area_mm2, r->skipped_area_mm2, report.gouges,
-                report.collisions, report.worst_collision_mm);
-    EXPECT_EQ(report.gouges, 0);
-    if (r == &blind)
-      EXPECT_GT(report.collisions, 0);  // the case is real
-    else
-      EXPECT_EQ(report.collisions, 0);
-  }
+  expectOnlyTheBlindPlanCollides(part, stock.mesh, tool, blind, aware);
   EXPECT_GT(aware.planned_area_mm2, 0.5 * blind.planned_area_mm2);  // the dome away from the pillar is finished
 }
 
