@@ -299,6 +299,34 @@ TEST(ParallelForTicking, AnItemsExceptionComesOutOnceEveryWorkerStopped) {
                std::logic_error);
 }
 
+// runTicking, which parallelForTicking and the verification's sweep are built on: every work once with its own index,
+// on threads of their own; the stop that tick raises reaches every work, and tick is not called again.
+TEST(RunTicking, EveryWorkRunsOnceAndAStopFromTickReachesAll) {
+  constexpr int kThreads = 3;
+  std::vector<std::atomic<int>> ran(kThreads);
+  std::atomic<int> watching{0};
+  int ticks = 0, ticks_after = 0;
+  bool said_stop = false;
+  const bool stopped = runTicking(
+      kThreads,
+      [&](int t, const std::atomic<bool>& stop) {
+        ++ran[t];
+        ++watching;
+        while (!stop.load()) sleepMs(1);  // only the stop ends it
+      },
+      0.01,
+      [&] {
+        if (said_stop) ++ticks_after;
+        ++ticks;
+        said_stop = ticks >= 3 && watching.load() == kThreads;
+        return !said_stop;
+      });
+  EXPECT_TRUE(stopped);
+  for (int t = 0; t < kThreads; ++t) EXPECT_EQ(ran[t].load(), 1) << "work " << t;
+  EXPECT_EQ(ticks_after, 0);
+  EXPECT_FALSE(runTicking(2, [](int, const std::atomic<bool>&) { sleepMs(20); }, 0.005, [] { return true; }));
+}
+
 // ---- finishing ------------------------------------------------------------------------------------------------------
 
 // Finishing's groups run side by side while the calling thread reports; stopped, it starts no further group, reports

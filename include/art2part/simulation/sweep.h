@@ -111,10 +111,10 @@ struct SweepResult {
   std::map<int, OperationSweep> by_op;  // by toolpath op, every op whose moves were swept
 };
 
-// Tools by id; throws InputError naming the row for a tool id that is not there. With a progress sink the threads all
-// sweep while the calling thread reports (stage "verification", the share of the moves every thread has swept,
-// "move i of n") every kSweepReportSeconds and stops them within a move when the sink says so; the sink is only ever
-// called from the calling thread.
+// Tools by id; throws InputError naming the row for a tool id that is not there. The threads all sweep (runTicking)
+// while the calling thread, given a progress sink, reports (stage "verification", the share of the moves every thread
+// has swept, "move i of n") every kSweepReportSeconds and stops them within a move when the sink says so; the sink is
+// only ever called from the calling thread.
 constexpr double kSweepReportSeconds = 0.25;
 SweepResult sweepToolpath(Stock& stock, const MeshDexels& part, const PartDistance& part_distance,
                           const Toolpath& path, const std::map<std::string, ToolSolid>& tools,

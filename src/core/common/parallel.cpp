@@ -30,61 +30,70 @@ void parallelFor(int count, int threads, const std::function<void(int)>& body) {
   for (std::thread& thread : pool) thread.join();
 }
 
-bool parallelForTicking(int count, int threads, const std::function<void(int)>& body, double period,
-                        const std::function<bool(int done)>& tick) {
-  const int n = std::min(threadCount(threads), std::max(1, count));
-  std::atomic<int> next{0};
+bool runTicking(int threads, const std::function<void(int t, const std::atomic<bool>& stop)>& work, double period,
+                const std::function<bool()>& tick) {
+  const int n = std::max(1, threads);
   std::atomic<bool> stop{false};
   bool stopped = false;  // tick said so
   std::mutex mutex;
   std::condition_variable changed;
-  int done = 0, running = n;
+  int running = n;
   std::exception_ptr failure;
-  auto work = [&] {
-    for (;;) {
-      if (stop.load()) break;
-      const int k = next.fetch_add(1);
-      if (k >= count) break;
+  std::vector<std::thread> pool;
+  for (int t = 0; t < n; ++t)
+    pool.emplace_back([&, t] {
       try {
-        body(k);
+        work(t, stop);
       } catch (...) {
-        std::lock_guard<std::mutex> lock(mutex);
+        const std::lock_guard<std::mutex> lock(mutex);
         if (!failure) failure = std::current_exception();
         stop.store(true);
       }
-      std::lock_guard<std::mutex> lock(mutex);
-      ++done;
+      {
+        const std::lock_guard<std::mutex> lock(mutex);
+        --running;
+      }
       changed.notify_one();
-    }
-    std::lock_guard<std::mutex> lock(mutex);
-    --running;
-    changed.notify_one();
+    });
+  auto joinAll = [&] {
+    for (std::thread& thread : pool) thread.join();
   };
-  std::vector<std::thread> pool;
-  for (int t = 0; t < n; ++t) pool.emplace_back(work);
   try {
     std::unique_lock<std::mutex> lock(mutex);
     const auto wait = std::chrono::duration<double>(period);
     while (running > 0) {
       if (changed.wait_for(lock, wait, [&] { return running == 0; })) break;
-      if (stopped) continue;  // the items running finish, unreported
-      const int now = done;
+      if (stopped) continue;  // the works return, unreported
       lock.unlock();
-      if (!tick(now)) {
+      if (!tick()) {
         stopped = true;
         stop.store(true);
       }
       lock.lock();
     }
-  } catch (...) {  // from tick: the workers stop before it goes on up
+  } catch (...) {  // from tick: the works stop before it goes on up
     stop.store(true);
-    for (std::thread& thread : pool) thread.join();
+    joinAll();
     throw;
   }
-  for (std::thread& thread : pool) thread.join();
+  joinAll();
   if (failure) std::rethrow_exception(failure);
-  if (!stopped) tick(done);
-  return done == count;
+  return stopped;
+}
+
+bool parallelForTicking(int count, int threads, const std::function<void(int)>& body, double period,
+                        const std::function<bool(int done)>& tick) {
+  std::atomic<int> next{0}, done{0};
+  auto items = [&](int, const std::atomic<bool>& stop) {
+    for (int k = 0; !stop.load() && (k = next.fetch_add(1)) < count;) {
+      body(k);
+      done.fetch_add(1);
+    }
+  };
+  const bool stopped = runTicking(std::min(threadCount(threads), std::max(1, count)), items, period,
+                                  [&] { return tick(done.load()); });
+  if (!stopped) tick(done.load());
+  return done.load() == count;
 }
 
 }  // namespace art2part

@@ -5,10 +5,9 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <condition_variable>
 #include <memory>
-#include <mutex>
-#include <thread>
+
+#include "art2part/common/parallel.h"
 
 namespace art2part {
 
@@ -174,14 +173,14 @@ class Worker {
       : stock_(stock), extents_(extents), gaps_(gaps), tiles_(stock.lattice, extents), part_(part),
         part_extents_(part_extents), distance_(distance), options_(options), thread_(thread), threads_(threads) {}
 
-  // Every run given over this worker's rows; after each, the rows done go to `rows_done` and a raised `stop`
-  // ends it (both may be null).
+  // Every run given over this worker's rows, in order, until `stop` is raised; after each, the rows swept so far go
+  // to `rows_done`.
   void run(const Toolpath& path, const std::vector<StraightRun>& runs, const std::vector<const ToolSolid*>& tools,
-           std::atomic<int>* rows_done = nullptr, const std::atomic<bool>* stop = nullptr) {
+           std::atomic<int>& rows_done, const std::atomic<bool>& stop) {
     for (const StraightRun& run : runs) {
-      if (stop && stop->load(std::memory_order_relaxed)) return;
+      if (stop.load(std::memory_order_relaxed)) return;
       sweepRun(path, *tools[run.last], run);
-      if (rows_done) rows_done->store(run.last + 1, std::memory_order_relaxed);
+      rows_done.store(run.last + 1, std::memory_order_relaxed);
     }
   }
 
@@ -462,43 +461,23 @@ std::vector<StraightRun> runsBetween(const Toolpath& path, int first, int end) {
   return between;
 }
 
-// Every worker on a thread of its own while the calling thread reports the share of the rows the slowest has swept
-// and raises the stop when the sink says so. True when it was stopped.
+// Every worker on a thread of its own (runTicking) while the calling thread reports the share of the rows the
+// slowest has swept, when there is a sink, and raises the stop when the sink says so. True when it was stopped.
 bool runReporting(std::vector<Worker>& workers, const Toolpath& path, const std::vector<StraightRun>& runs,
                   const std::vector<const ToolSolid*>& row_tools, const ProgressSink& progress) {
   const int n = static_cast<int>(workers.size());
   std::unique_ptr<std::atomic<int>[]> rows_done(new std::atomic<int>[n]);
   const int first = runs.empty() ? 0 : runs.front().first;
   for (int t = 0; t < n; ++t) rows_done[t].store(first);
-  std::atomic<bool> stop{false};
-  std::mutex mutex;
-  std::condition_variable finished_changed;
-  int finished = 0;
-  std::vector<std::thread> running;
-  for (int t = 0; t < n; ++t)
-    running.emplace_back([&, t] {
-      workers[t].run(path, runs, row_tools, &rows_done[t], &stop);
-      {
-        const std::lock_guard<std::mutex> lock(mutex);
-        ++finished;
-      }
-      finished_changed.notify_one();
-    });
-  const auto period = std::chrono::duration<double>(kSweepReportSeconds);
-  std::unique_lock<std::mutex> lock(mutex);
-  while (finished < n) {
-    if (finished_changed.wait_for(lock, period, [&] { return finished == n; })) break;
-    lock.unlock();
+  auto sweep = [&](int t, const std::atomic<bool>& stop) { workers[t].run(path, runs, row_tools, rows_done[t], stop); };
+  auto report = [&] {
+    if (!progress) return true;
     int done = static_cast<int>(path.size());
     for (int t = 0; t < n; ++t) done = std::min(done, rows_done[t].load(std::memory_order_relaxed));
-    const bool go_on = reportProgress(progress, "verification", static_cast<double>(done) / path.size(),
-                                      "move " + std::to_string(done) + " of " + std::to_string(path.size()), done);
-    if (!go_on) stop.store(true);
-    lock.lock();
-  }
-  lock.unlock();
-  for (std::thread& t : running) t.join();
-  return stop.load();
+    return reportProgress(progress, "verification", static_cast<double>(done) / path.size(),
+                          "move " + std::to_string(done) + " of " + std::to_string(path.size()), done);
+  };
+  return runTicking(n, sweep, kSweepReportSeconds, report);
 }
 
 }  // namespace
@@ -509,22 +488,14 @@ SweepResult sweepToolpath(Stock& stock, const MeshDexels& part, const PartDistan
   const auto start = std::chrono::steady_clock::now();
   const std::vector<const ToolSolid*> row_tools = toolOfEveryRow(path, tools);
   const std::vector<StraightRun> runs = runsBetween(path, options.first_row, options.end_row);
-  const int threads = options.threads > 0 ? options.threads
-                                          : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  const int threads = threadCount(options.threads);
   Extents extents = stockExtents(stock), gaps = stockGaps(stock);
   const Extents part_extents = solidExtents(part);
   std::vector<Worker> workers;
   for (int t = 0; t < threads; ++t)
     workers.emplace_back(stock, extents, gaps, part, part_extents, part_distance, options, t, threads);
   SweepResult result;
-  if (progress) {
-    result.cancelled = runReporting(workers, path, runs, row_tools, progress);
-  } else {
-    std::vector<std::thread> running;
-    for (int t = 1; t < threads; ++t) running.emplace_back([&, t] { workers[t].run(path, runs, row_tools); });
-    workers[0].run(path, runs, row_tools);
-    for (std::thread& t : running) t.join();
-  }
+  result.cancelled = runReporting(workers, path, runs, row_tools, progress);
   for (const Worker& w : workers) {
     for (const auto& [row, finding] : w.findings()) mergeFinding(result.findings[row], finding);
     for (const auto& [op, length] : w.removedLength()) {
