@@ -13,8 +13,10 @@ int threadCount(int requested);
 // calling thread alone when one thread (or one item) is all there is. The body must not throw.
 void parallelFor(int count, int threads, const std::function<void(int)>& body);
 
-// The one way a stage runs work that it reports on and may stop: work(t, stop) for t in [0, threads) (at least one),
-// each on a thread of its own, while the calling thread calls tick() every `period` seconds until all have returned.
+// The one way a stage runs work that it reports on and may stop (visibility's directions, finishing's groups through
+// parallelForTicking, the verification's sweep): work(t, stop) for t in [0, threads) (at least one), each on a thread
+// of its own, while the calling thread calls tick() every `period` seconds until all have returned. A thread that
+// cannot be started stops those running and its error is thrown once they have returned.
 // Once tick returns false it is not called again and `stop` is raised: every work is to watch it and return soon. An
 // exception from a work raises `stop` too and is rethrown here once every work has returned (the first one thrown),
 // and so is one from tick. Returns whether tick stopped the work. tick is only ever called from the calling thread.

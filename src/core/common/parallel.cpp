@@ -40,24 +40,30 @@ bool runTicking(int threads, const std::function<void(int t, const std::atomic<b
   int running = n;
   std::exception_ptr failure;
   std::vector<std::thread> pool;
-  for (int t = 0; t < n; ++t)
-    pool.emplace_back([&, t] {
-      try {
-        work(t, stop);
-      } catch (...) {
-        const std::lock_guard<std::mutex> lock(mutex);
-        if (!failure) failure = std::current_exception();
-        stop.store(true);
-      }
-      {
-        const std::lock_guard<std::mutex> lock(mutex);
-        --running;
-      }
-      changed.notify_one();
-    });
   auto joinAll = [&] {
     for (std::thread& thread : pool) thread.join();
   };
+  try {
+    for (int t = 0; t < n; ++t)
+      pool.emplace_back([&, t] {
+        try {
+          work(t, stop);
+        } catch (...) {
+          const std::lock_guard<std::mutex> lock(mutex);
+          if (!failure) failure = std::current_exception();
+          stop.store(true);
+        }
+        {
+          const std::lock_guard<std::mutex> lock(mutex);
+          --running;
+        }
+        changed.notify_one();
+      });
+  } catch (...) {  // no thread to be had: stop the ones running before they are destroyed joinable
+    stop.store(true);
+    joinAll();
+    throw;
+  }
   try {
     std::unique_lock<std::mutex> lock(mutex);
     const auto wait = std::chrono::duration<double>(period);

@@ -31,7 +31,6 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <condition_variable>
 #include <exception>
 #include <limits>
 #include <mutex>
@@ -39,6 +38,7 @@
 #include <thread>
 #include <vector>
 
+#include "art2part/common/parallel.h"
 #include "art2part/visibility/visibility.h"
 #include "ray_scene.h"
 
@@ -245,7 +245,8 @@ class Tracer {
 
 // Hands directions to the tracing threads one at a time and merges their results. Bits of different directions
 // share words of a row, so results are written under a lock (well under a millisecond per direction, against
-// several of tracing).
+// several of tracing). The calling thread reports progress (runTicking), so a callback never runs on a tracing
+// thread.
 class Job {
  public:
   Job(RTCScene scene, const Prepared& prepared, bool refine, const std::vector<int>& subset, int samples,
@@ -253,60 +254,28 @@ class Job {
       : scene_(scene), prepared_(prepared), refine_(refine), subset_(subset), samples_(samples),
         directions_(directions), bits_(bits) {}
 
+  // Throws "cancelled" when the progress function says stop, and what a tracing thread threw.
   void run(int threads, const Progress& progress) {
-    std::vector<std::thread> pool;
-    try {
-      for (int i = 0; i < threads; ++i) pool.emplace_back([this] { work(); });
-    } catch (...) {  // no thread to be had: stop the ones running before they are destroyed joinable
-      stop_ = true;
-      for (std::thread& thread : pool) thread.join();
-      throw;
-    }
-    const bool completed = watch(progress);
-    for (std::thread& thread : pool) thread.join();
-    if (error_) std::rethrow_exception(error_);
-    if (!completed) throw std::runtime_error("cancelled");
+    const double total = static_cast<double>(directions_.size());
+    const bool stopped = runTicking(
+        threads, [this](int, const std::atomic<bool>& stop) { work(stop); }, kReportSeconds,
+        [&] { return !progress || progress(done_.load() / total); });
+    if (stopped) throw std::runtime_error("cancelled");
   }
 
  private:
-  // The calling thread reports progress, so a callback never runs on a tracing thread. Returns false when
-  // cancelled (the workers have been told to stop).
-  bool watch(const Progress& progress) {
-    const int total = static_cast<int>(directions_.size());
-    std::unique_lock<std::mutex> lock(mutex_);
-    while (done_ < total && !stop_) {
-      wake_.wait_for(lock, std::chrono::milliseconds(100));
-      if (!progress || stop_) continue;
-      const double fraction = double(done_) / total;
-      lock.unlock();
-      const bool go_on = progress(fraction);
-      lock.lock();
-      if (!go_on) {
-        stop_ = true;
-        return false;
-      }
-    }
-    return done_ == total;
-  }
+  static constexpr double kReportSeconds = 0.1;
 
-  void work() {
-    try {
-      Tracer tracer(scene_, prepared_, refine_, subset_, samples_);
-      for (int d = next_++; d < static_cast<int>(directions_.size()) && !stop_; d = next_++)
-        record(d, tracer.visibleAlong(unit(directions_[d])));
-    } catch (...) {
-      std::lock_guard<std::mutex> lock(mutex_);
-      if (!error_) error_ = std::current_exception();
-      stop_ = true;
-      wake_.notify_one();
-    }
+  void work(const std::atomic<bool>& stop) {
+    Tracer tracer(scene_, prepared_, refine_, subset_, samples_);
+    for (int d = next_++; d < static_cast<int>(directions_.size()) && !stop.load(); d = next_++)
+      record(d, tracer.visibleAlong(unit(directions_[d])));
   }
 
   void record(int d, const std::vector<int>& visible) {
     std::lock_guard<std::mutex> lock(mutex_);
     for (int i : visible) bits_.set(prepared_.triangle[i], d);
     ++done_;
-    wake_.notify_one();
   }
 
   RTCScene scene_;
@@ -316,12 +285,8 @@ class Job {
   const int samples_;
   const std::vector<Vec3>& directions_;
   BitMatrix& bits_;
-  std::atomic<int> next_{0};
-  std::mutex mutex_;  // guards bits_, done_, error_ and the wake-ups
-  std::condition_variable wake_;
-  int done_ = 0;
-  std::atomic<bool> stop_{false};
-  std::exception_ptr error_;
+  std::atomic<int> next_{0}, done_{0};
+  std::mutex mutex_;  // guards bits_
 };
 
 // Each thread holds a few arrays the size of the mesh, so a mistaken huge request is capped.

@@ -13,6 +13,7 @@
 // passes marking its triangle in a storage buffer. Unlike ids in pixels, marks never overwrite each
 // other, so a sliver between two neighbours that share all its pixels is still seen.
 #include "art2part/render/offscreen_context.h"  // first: GL prototypes
+#include "art2part/common/parallel.h"
 #include "art2part/visibility/visibility.h"
 #include "render_fallback.h"
 #include "render_scene.h"
@@ -20,7 +21,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <condition_variable>
 #include <cstdint>
 #include <exception>
 #include <memory>
@@ -236,8 +236,8 @@ class ViewRenderer {
   GLint mark_view_location_ = -1, stamp_location_ = -1;
 };
 
-// State the workers share. Results are merged and progress is counted under `mutex`; the calling thread alone
-// calls the user's progress function.
+// State the workers share. Results are merged under `mutex`; the calling thread alone calls the user's progress
+// function (runTicking).
 struct Shared {
   Shared(const Scene& s, const idrender::RayFallback* f, const std::vector<Vec3>& d, BitMatrix& b)
       : scene(s), fallback(f), directions(d), bits(b) {}
@@ -245,12 +245,9 @@ struct Shared {
   const idrender::RayFallback* fallback;  // null: pixels and outlines alone
   const std::vector<Vec3>& directions;
   BitMatrix& bits;
-  std::atomic<int> next{0};       // next direction to claim
-  std::atomic<bool> stop{false};  // cancelled or failed
-  std::mutex mutex;
-  std::condition_variable changed;
-  int done = 0, running = 0;
-  std::exception_ptr error;
+  std::atomic<int> next{0};  // next direction to claim
+  std::atomic<int> done{0};  // directions finished
+  std::mutex mutex;          // guards bits
 };
 
 // Triangles seen in one view, each once. `stamp` remembers the last view that listed a triangle, so it never needs
@@ -279,7 +276,7 @@ void collectMarked(const std::vector<GLuint>& marks, GLuint stamp, const Scene& 
   }
 }
 
-void renderDirections(Shared& shared) {
+void renderDirections(Shared& shared, const std::atomic<bool>& stop) {
   OffscreenContext context;  // one per thread: OSMesa contexts are current on one thread at a time
   ViewRenderer renderer(shared.scene);
   std::unique_ptr<idrender::RayFallback::Tracer> rays;
@@ -288,7 +285,7 @@ void renderDirections(Shared& shared) {
   std::vector<GLuint> ids, marks;
   ids.reserve(std::size_t(shared.scene.resolution) * shared.scene.resolution);
   const int count = static_cast<int>(shared.directions.size());
-  for (int d = shared.next++; d < count && !shared.stop; d = shared.next++) {
+  for (int d = shared.next++; d < count && !stop.load(); d = shared.next++) {
     const Vec3 direction = shared.directions[d].normalized();
     renderer.render(direction, ids);
     collectVisible(ids, shared.scene, direction, d, stamp, visible);
@@ -300,43 +297,11 @@ void renderDirections(Shared& shared) {
     std::lock_guard<std::mutex> lock(shared.mutex);  // other threads' bits share the same 64-bit words
     for (int t : visible) shared.bits.set(t, d);
     ++shared.done;
-    shared.changed.notify_all();
   }
   checkGlError("renderVisibility");
 }
 
-void worker(Shared& shared) {
-  try {
-    renderDirections(shared);
-  } catch (...) {
-    std::lock_guard<std::mutex> lock(shared.mutex);
-    if (!shared.error) shared.error = std::current_exception();
-    shared.stop = true;
-  }
-  std::lock_guard<std::mutex> lock(shared.mutex);
-  --shared.running;
-  shared.changed.notify_all();
-}
-
-// Waits for the workers, reporting progress from the calling thread; false when the user cancelled.
-bool superviseWorkers(Shared& shared, const Progress& progress) {
-  const double total = std::max<std::size_t>(shared.directions.size(), 1);
-  std::unique_lock<std::mutex> lock(shared.mutex);
-  int reported = -1;
-  while (shared.running > 0) {
-    shared.changed.wait(lock);
-    if (!progress || shared.done == reported || shared.stop) continue;
-    reported = shared.done;
-    lock.unlock();  // the callback may be slow; workers must not wait for it
-    const bool go_on = progress(reported / total);
-    lock.lock();
-    if (!go_on) {
-      shared.stop = true;
-      return false;
-    }
-  }
-  return true;
-}
+constexpr double kReportSeconds = 0.1;
 
 int threadCount(const RenderVisibilityOptions& options, std::size_t directions) {
   int threads = options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());
@@ -358,21 +323,12 @@ VisibilityMap renderVisibility(const Mesh& mesh, const std::vector<Vec3>& direct
   const double pixel = 2 * scene.radius / scene.resolution;
   if (options.ray_fallback) fallback = std::make_unique<idrender::RayFallback>(mesh, pixel);
   Shared shared(scene, fallback.get(), directions, map.bits);
-  const int threads = threadCount(options, directions.size());
-  shared.running = threads;
-  std::vector<std::thread> workers;
-  try {
-    for (int i = 0; i < threads; ++i) workers.emplace_back(worker, std::ref(shared));
-  } catch (...) {  // no thread left to start: stop the ones running before unwinding
-    shared.stop = true;
-    for (std::thread& w : workers) w.join();
-    throw;
-  }
-  const bool completed = superviseWorkers(shared, progress);
-  for (std::thread& w : workers) w.join();
-
-  if (!completed) throw std::runtime_error("cancelled");
-  if (shared.error) std::rethrow_exception(shared.error);
+  const double total = static_cast<double>(directions.size());
+  const bool stopped = runTicking(
+      threadCount(options, directions.size()),
+      [&shared](int, const std::atomic<bool>& stop) { renderDirections(shared, stop); }, kReportSeconds,
+      [&] { return !progress || progress(shared.done.load() / total); });
+  if (stopped) throw std::runtime_error("cancelled");
   if (progress && !progress(1.0)) throw std::runtime_error("cancelled");
   return map;
 }
