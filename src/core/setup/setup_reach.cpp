@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "art2part/common/angles.h"
+#include "art2part/common/parallel.h"
 
 #include "setup_internal.h"
 
@@ -95,15 +96,8 @@ BitMatrix distinctReach(const BitMatrix& bits, const std::vector<int>& represent
   const int U = static_cast<int>(representative.size());
   BitMatrix reach(U, caps.rows());
   const int threads = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, std::max(1, U / 256));
-  if (threads == 1) {
-    reachOfCones(bits, representative, caps, reach, 0, U);
-    return reach;
-  }
-  std::vector<std::thread> pool;
-  for (int i = 0; i < threads; ++i)
-    pool.emplace_back(reachOfCones, std::cref(bits), std::cref(representative), std::cref(caps), std::ref(reach),
-                      U * i / threads, U * (i + 1) / threads);
-  for (std::thread& t : pool) t.join();
+  parallelFor(threads, threads,
+              [&](int i) { reachOfCones(bits, representative, caps, reach, U * i / threads, U * (i + 1) / threads); });
   return reach;
 }
 

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "art2part/common/angles.h"
+#include "art2part/common/parallel.h"
 
 #include "feed_moves.h"
 
@@ -394,15 +395,11 @@ ScallopReport probeScallops(const Mesh& mesh, const std::vector<int>& triangle_f
                                                                 : static_cast<int>(std::thread::hardware_concurrency())));
   std::atomic<int> next{0};
   std::atomic<long long> tests{0};
-  auto work = [&]() {
+  parallelFor(threads, threads, [&](int) {
     Prober prober(mesh, moves, flutes, move_boxes, blocks, options);
     for (int w = next++; w < static_cast<int>(report.windows.size()); w = next++) prober.measure(report.windows[w]);
     tests += prober.tests();
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool) t.join();
+  });
   report.ray_piece_tests = tests;
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <thread>
 
+#include "art2part/common/parallel.h"
 #include "feed_moves.h"
 
 namespace art2part {
@@ -358,10 +359,7 @@ CoverageReport surfaceCoverage(const Mesh& mesh, const std::vector<int>& triangl
     std::vector<Worker> workers;
     for (int t = 0; t < threads; ++t)
       workers.emplace_back(samples, grid, covered, moves, flutes, options.tolerance, t, threads);
-    std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t) pool.emplace_back([&workers, &chunks, t]() { workers[t].run(chunks); });
-    workers[0].run(chunks);
-    for (std::thread& th : pool) th.join();
+    parallelFor(threads, threads, [&workers, &chunks](int t) { workers[t].run(chunks); });
     for (const Worker& w : workers) r.pose_queries += w.queries();
   }
 

@@ -8,6 +8,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "art2part/common/parallel.h"
 #include "volume_visibility_height_map.h"
 
 namespace art2part {
@@ -24,14 +25,6 @@ int threadCount(int requested, int work) {
   return std::clamp(threads, 1, std::max(1, work));
 }
 
-// Runs body(t) for t in [0, threads) on that many threads (the calling one included).
-template <class Body>
-void parallel(int threads, const Body& body) {
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(body, t);
-  body(0);
-  for (auto& th : pool) th.join();
-}
 
 // ---- inside / outside -------------------------------------------------------------------------------------------
 
@@ -149,7 +142,7 @@ void buildMaps(const Mesh& mesh, const Box& stock, const std::vector<Vec3>& dire
                double pixel, int threads, std::vector<HeightMap>& maps) {
   const int count = static_cast<int>(std::min<std::size_t>(kWordBits, directions.size() - start));
   maps.resize(count);
-  parallel(std::min(threads, count), [&](int t) {
+  parallelFor(std::min(threads, count), std::min(threads, count), [&](int t) {
     for (int m = t; m < count; m += threads) {
       maps[m].reset(directions[start + m], stock, pixel);
       maps[m].rasteriseMesh(mesh);
@@ -160,7 +153,7 @@ void buildMaps(const Mesh& mesh, const Box& stock, const std::vector<Vec3>& dire
 void chunkWords(const VoxelGrid& g, const std::vector<char>& outside, const std::vector<HeightMap>& maps,
                 double tolerance, int threads, std::vector<std::uint64_t>& words) {
   const int rows = g.ny * g.nz;
-  parallel(threads, [&](int t) {
+  parallelFor(threads, threads, [&](int t) {
     for (int r = t * rows / threads; r < (t + 1) * rows / threads; ++r)
       rowWords(g, outside, maps, tolerance, r % g.ny, r / g.ny, words.data());
   });
