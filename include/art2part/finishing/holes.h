@@ -173,12 +173,13 @@ double linkAtClearanceLevel(const Vec3& from, const Vec3& to, double lowest, dou
 // above its mouth (retract_height), a feed straight down the axis to the depth, a rapid back to the R plane. The run
 // starts and ends at the clearance level (`clearance_above` mm over the highest mouth along the axis, raised over the
 // part's material measured round the holes, free_radius, + holder_margin: the caller passes enough to clear the part
-// beyond clearance_radius, e.g. the setup's stock top + its clearance - the highest mouth); between holes the tool
-// goes up to the height `link` gives, across and down (by default at the clearance level). The depth: the drill's tip as chooseHoleMethod puts it (tip_depth: the cone's apex or the
-// shoulder at the bore's end, whichever is shallower, for a cone bottom; the floor for a flat one; the far end + point
-// length + breakthrough, within free_beyond less holder_margin, for a through hole); `spot`: spotDepth. The post turns
-// each hole into G81 / G83 (G98 back to the height the tool came down from when it leaves at that height, else G99).
-// Throws InputError when the holes' axes differ by more than axis_tolerance_deg, or `tool` is not a drill.
+// beyond clearance_radius, e.g. the setup's stock top + its clearance - the highest mouth); between holes the tool goes
+// up to the height `link` gives, across and down (by default at the clearance level). The depth: the drill's tip as
+// chooseHoleMethod puts it (tip_depth: the cone's apex or the shoulder at the bore's end, whichever is shallower, for a
+// cone bottom; the floor for a flat one; the far end + point length + breakthrough, within free_beyond less
+// holder_margin, for a through hole); `spot`: spotDepth. The post turns each hole into G81 / G83 (G98 back to the
+// height the tool came down from when it leaves at that height, else G99). Throws InputError when the holes' axes
+// differ by more than axis_tolerance_deg, or `tool` is not a drill.
 Toolpath drillingPath(const std::vector<Hole>& holes, const Tool& tool, bool spot, int setup, double clearance_above,
                       const HoleOptions& options = {}, const HoleLink& link = linkAtClearanceLevel);
 // Helical milling of one hole with a flat end mill: from the clearance height (as drillingPath's) down to the R plane

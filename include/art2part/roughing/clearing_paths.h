@@ -102,13 +102,14 @@ struct ClearingOptions {
 // feed at z or of a ring edge in air, so every point of stock within the tool radius of `centre` is swept: a point
 // within r of a ring edge in air is no stock.
 // Pieces are taken, and a piece's passes, cheapest start first: from either end, by the seconds of a straight rapid
-// from the tool and of the entry there (a plunge in air is quicker than a ramp), each reached as `stay_down` says. Without stay_down the first point is a rapid at the clearance plane, the
-// last a retract to it and sideways rapids are at the clearance plane only; with it, sideways rapids also run at the
-// heights that ClearedLevel and `top` prove clear, over the regions that prove it. A piece no point of which lies
-// farther than stepover/2 from its rings (a narrow band, as rest passes leave) gets no zig-zag when there is a
-// contour pass: the contour covers it. Every Feed/Ramp/Plunge point lies in `centre` (x, y) at a height in
-// [z, top + safe_height]; every cutting segment lies in `centre` (to within the region grid); nothing descends more steeply than the ramp
-// angle but plunges. `stats`, if given, is added to.
+// from the tool and of the entry there (a plunge in air is quicker than a ramp), each reached as `stay_down` says.
+// Without stay_down the first point is a rapid at the clearance plane, the last a retract to it and sideways rapids are
+// at the clearance plane only; with it, sideways rapids also run at the heights that ClearedLevel and `top` prove
+// clear, over the regions that prove it. A piece no point of which lies farther than stepover/2 from its rings (a
+// narrow band, as rest passes leave) gets no zig-zag when there is a contour pass: the contour covers it. Every
+// Feed/Ramp/Plunge point lies in `centre` (x, y) at a height in [z, top + safe_height]; every cutting segment lies in
+// `centre` (to within the region grid); nothing descends more steeply than the ramp angle but plunges. `stats`, if
+// given, is added to.
 struct ClearingStats {
   int passes = 0, contours = 0;    // zig-zag passes and contour passes
   int ramps = 0;                   // entries by a ramp

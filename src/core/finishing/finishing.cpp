@@ -385,7 +385,8 @@ void makeHoles(const Context& c, const std::vector<FaceAssignment>& assignment, 
     op.kind = FinishingKind::Drill;
     op.tool = tool.id;
     op.direction = list.front().axis;
-    op.path = drillingPath(list, tool, spot, setup, clearanceAbove(group), c.options.holes, linkFor(setup, group, tool));
+    op.path =
+        drillingPath(list, tool, spot, setup, clearanceAbove(group), c.options.holes, linkFor(setup, group, tool));
     for (int h : group) op.faces.insert(op.faces.end(), holes[h].bore_faces.begin(), holes[h].bore_faces.end());
     if (spot) op.note = "spot drilling";
     return op;

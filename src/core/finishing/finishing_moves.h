@@ -211,10 +211,10 @@ struct WallStretch {
   std::shared_ptr<const Region> allowed;
   std::shared_ptr<const SafeDescent> safe;
 };
-// Cuts the stretches nearest first (x-y distance from the tool to a stretch's start plus the height between), each
-// only once every stretch at a higher level over it is cut (their boxes, grown by `reach`, meet; TopDownSchedule):
-// down one wall band by band before crossing to the next. Why: level after level, the tool crossed the part between walls at every
-// level.
+// Cuts the stretches nearest first (x-y distance from the tool to a stretch's start plus the height between), each only
+// once every stretch at a higher level over it is cut (their boxes, grown by `reach`, meet; TopDownSchedule): down one
+// wall band by band before crossing to the next. Why: level after level, the tool crossed the part between walls at
+// every level.
 void cutWalls(const std::vector<WallStretch>& walls, double lead, double reach, const DescentLimit& limit,
               PathWriter& out);
 

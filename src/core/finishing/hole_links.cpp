@@ -12,7 +12,9 @@ HoleLink linkOverStock(const std::vector<SlabState>& slabs, const SetupFrame& fr
   return [clearance, frame](const Vec3& from, const Vec3& to, double lowest, double level) {
     // Heights along the axis as Vec3::dot measures them; the frame's z is that less the origin's.
     const double base = frame.origin.dot(frame.z);
-    const auto flat = [&frame](const Vec3& p) { return Point2((p - frame.origin).dot(frame.x), (p - frame.origin).dot(frame.y)); };
+    const auto flat = [&frame](const Vec3& p) {
+      return Point2((p - frame.origin).dot(frame.x), (p - frame.origin).dot(frame.y));
+    };
     return base + clearance->lowestClear(flat(from), flat(to), lowest - base, level - base);
   };
 }

@@ -10,7 +10,8 @@ TopDownSchedule::TopDownSchedule(std::vector<ScheduledItem> items, double reach)
     : items_(std::move(items)), waiting_(items_.size(), 0), unblocks_(items_.size()), taken_(items_.size(), false) {
   std::vector<std::size_t> by_x(items_.size());
   std::iota(by_x.begin(), by_x.end(), std::size_t{0});
-  std::sort(by_x.begin(), by_x.end(), [this](std::size_t a, std::size_t b) { return items_[a].lo.x() < items_[b].lo.x(); });
+  std::sort(by_x.begin(), by_x.end(),
+            [this](std::size_t a, std::size_t b) { return items_[a].lo.x() < items_[b].lo.x(); });
   for (std::size_t i = 0; i < by_x.size(); ++i) {
     const ScheduledItem& a = items_[by_x[i]];
     // Sorted by lo.x: once an item starts beyond a's reach along x, every later one does too.

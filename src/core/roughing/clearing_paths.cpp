@@ -259,7 +259,8 @@ using AirEnds = std::pair<bool, bool>;
 
 // What starting a pass costs (PathWriter::startSeconds) at its cheaper end, and whether that is its back.
 std::pair<double, bool> startCost(const Polyline& pass, const AirEnds& air, const PathWriter& writer) {
-  const double front = writer.startSeconds(pass.front(), air.first), back = writer.startSeconds(pass.back(), air.second);
+  const double front = writer.startSeconds(pass.front(), air.first);
+  const double back = writer.startSeconds(pass.back(), air.second);
   return {std::min(front, back), back < front};
 }
 
