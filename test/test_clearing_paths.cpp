@@ -89,6 +89,31 @@ double worstCoverage(const Region& centre, const std::vector<ClearingPoint>& mov
   return worst;
 }
 
+// The largest distance, less the cutter radius r, from a point of a `grid` mm lattice within r of the region (the
+// stock the level is to take) to the nearest feed at the level or edge of the region's rings lying in `air` (no stock
+// lies within r of one): at most 0 (to within the lattice) when the cutter sweeps all of it.
+double worstSweep(const Region& centre, const std::vector<ClearingPoint>& moves, double z, double r,
+                  double grid = 0.5, const Region& air = {}) {
+  std::vector<Segment> feeds = feedsAtLevel(moves, z);
+  for (const Ring& ring : regionRings(centre))
+    for (std::size_t i = 0; i < ring.size(); ++i)
+      if (segmentInside(air, ring[i], ring[(i + 1) % ring.size()])) feeds.push_back({ring[i], ring[(i + 1) % ring.size()]});
+  const Region reach = offsetRegion(centre, r);
+  Point2 lo(1e9, 1e9), hi(-1e9, -1e9);
+  for (const Ring& ring : regionRings(reach))
+    for (const Point2& p : ring) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  double worst = -r;
+  for (double x = std::floor(lo.x()); x <= hi.x(); x += grid)
+    for (double y = std::floor(lo.y()); y <= hi.y(); y += grid) {
+      const Point2 p(x, y);
+      if (!regionContains(reach, p)) continue;
+      double best = 1e9;
+      for (const Segment& s : feeds) best = std::min(best, distanceToSegment(p, s));
+      worst = std::max(worst, best - r);
+    }
+  return worst;
+}
+
 int upwardRetracts(const std::vector<ClearingPoint>& moves, double clearance_z) {
   int n = 0;
   for (std::size_t i = 1; i < moves.size(); ++i)
@@ -546,12 +571,59 @@ TEST(ClearingPaths, RandomRegionsAreSound) {
       level.cleared.push_back({level.top + 2, intersect(offsetRegion(centre, 2), disc)});
       if (unit(random) < 0.5) level.from = Eigen::Vector3d(60 * unit(random), 40 * unit(random), level.top);
     }
+    // A cutter wider than the stepover (as the library's are), which the zig-zag keeps inside the rings by
+    // zigzagInset in most trials.
+    const double r = options.stepover * (0.55 + 1.5 * unit(random));
+    if (unit(random) < 0.6) options.tool_radius = r;
     ClearingStats stats;
     const std::vector<ClearingPoint> moves = clearChecked(level, options, stats);
     if (options.contour_pass) {
-      EXPECT_LE(worstCoverage(centre, moves, level.z, 1.0, level.air), options.stepover / 2 + 0.06);
+      // A point between the zig-zag and the rings is within the inset of the contour, and one in the eroded piece
+      // within stepover/2 of a line or of the eroded rings.
+      const double inset = zigzagInset(options.stepover, options.tool_radius);
+      EXPECT_LE(worstCoverage(centre, moves, level.z, 1.0, level.air), options.stepover / 2 + inset + 0.06);
+      EXPECT_LE(worstSweep(centre, moves, level.z, r, 1.0, level.air), 0.06) << "stock the cutter never swept";
     }
   }
+}
+
+// With the cutter's radius known the zig-zag stops zigzagInset short of the rings: the contour pass sweeps that band,
+// cutting at most a stepover into it, and every point of stock within the radius of the region is still swept, for
+// less cutting than lines that run to the rings the contour then retraces.
+TEST(ClearingPaths, TheZigzagLeavesTheContourABandAtMostAStepoverWide) {
+  const ClearingLevel level = levelOf(region({rectangle(0, 0, 80, 40)}));
+  ClearingOptions options = optionsOf(4, 0, true);
+  ClearingStats full_stats;
+  const std::vector<ClearingPoint> full = clearChecked(level, options, full_stats);
+  options.tool_radius = 5;
+  const double inset = zigzagInset(options.stepover, options.tool_radius);
+  EXPECT_NEAR(inset, 2.0, 0.06);
+  EXPECT_DOUBLE_EQ(zigzagInset(8, 5), 1.0 - 0.05);  // radius - stepover/2 when that is smaller
+  EXPECT_DOUBLE_EQ(zigzagInset(8, 3), 0.0);         // no room: lines to the rings
+  ClearingStats stats;
+  const std::vector<ClearingPoint> moves = clearChecked(level, options, stats);
+  EXPECT_LE(worstSweep(level.centre, moves, level.z, options.tool_radius), 0.02);
+  EXPECT_LE(worstCoverage(level.centre, moves, level.z), options.stepover / 2 + 1e-6);
+  std::vector<Segment> inner;  // the zig-zag's feeds and links: off the rectangle's rings
+  for (const Segment& s : feedsAtLevel(moves, level.z)) {
+    const auto off = [](const Point2& p) { return std::min({p.x(), 80 - p.x(), p.y(), 40 - p.y()}); };
+    if (off(s.a) > 0.01 && off(s.b) > 0.01) {  // not the contour, nor a link to it
+      EXPECT_GE(std::min(off(s.a), off(s.b)), inset - 0.01);
+      inner.push_back(s);
+    }
+  }
+  ASSERT_FALSE(inner.empty());
+  double widest = 0;  // the contour's radial engagement: from a point of the ring to the nearest zig-zag feed
+  for (double t = 0; t < 240; t += 0.25) {
+    const Point2 p = t < 80 ? Point2(t, 0) : t < 120 ? Point2(80, t - 80) : t < 200 ? Point2(200 - t, 40)
+                                                                               : Point2(0, 240 - t);
+    double best = 1e9;
+    for (const Segment& s : inner) best = std::min(best, distanceToSegment(p, s));
+    widest = std::max(widest, best);
+  }
+  EXPECT_LE(widest, options.stepover + 1e-6);
+  EXPECT_LT(clearingLength(moves, true), clearingLength(full, true) - 0.9 * 10 * 2 * inset)
+      << "ten lines, each shorter by the inset at both ends";
 }
 
 // Stay-down links (issue 19): round an island that the level above did not have, the tool hops over the island at

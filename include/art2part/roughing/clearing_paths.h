@@ -27,9 +27,10 @@ struct ClearingPoint {
 // A level of the same operation, cleared before this one: once its moves are done the tool may stand at any height
 // from `z` up over any point of `centre` without meeting stock or part. Why: the column over every point of a centre
 // region is clear above the slab's top (roughing.h), and with the contour pass the moves sweep every point of stock
-// within the tool radius of `centre` down to `z` (such a point, within r of p in centre, is within stepover/2 < r of a
-// feed, or within r of the ring that the segment from p to it crosses, which the contour follows wherever a point
-// within r of it may be stock: not in `air`).
+// within the tool radius of `centre` down to `z` (such a point q, within r of p in centre, is within r of the ring
+// that the segment from p to it crosses or of the ring nearest it, which the contour follows wherever a point within
+// r of it may be stock: not in `air`; or else has the disc of radius r round it in `centre` and is within
+// stepover/2 < r of a zig-zag feed: zigzagInset).
 struct ClearedLevel {
   double z = 0;
   Region centre;
@@ -72,6 +73,10 @@ struct ClearingOptions {
   double clearance_z = 0;       // the clearance plane (above all stock): links that leave `centre` retract to it
   double min_segment = 0.05;    // mm: zig-zag intervals shorter than this are dropped
   bool contour_pass = true;     // a pass along every ring of `centre` after the zig-zag
+  // The cutter's radius r: with the contour pass, the zig-zag covers only the piece eroded by
+  // zigzagInset(stepover, r), the band outside it being the contour's (clearLevel says why every point is still
+  // swept). 0: the zig-zag runs to the rings, the contour retracing a band it already cut.
+  double tool_radius = 0;
   // Links between passes, pieces and levels. false: every pass is reached over the clearance plane (contours by a
   // feed where the straight way lies in `centre`). true: by whichever of these takes less time at the rates below,
   // a feed at the level along a straight segment in `centre` (a full-width cut at most, which the library's
@@ -84,8 +89,18 @@ struct ClearingOptions {
   double rapid_mm_min = 10000;  // the machine's rapid rate: the cost of a hop
 };
 
-// The moves that clear `level.centre`. Each connected piece of it gets zig-zag lines along the direction,
-// `stepover` apart and centred over the piece's extent across them (a piece left with no interval gets one line, at
+// mm the zig-zag keeps inside the rings a contour pass follows, with passes `stepover` apart of a cutter of `radius`:
+// min(stepover / 2, radius - stepover / 2) less a hair for the offset's arcs, 0 when that is not positive.
+// Why these bounds: a point of stock within the radius of a ring the contour follows is swept by it; any other point
+// q of stock the level is to take has the whole disc of radius r round it in `centre`, so the line nearest q across
+// the direction (at most stepover/2 away) lies at least r - stepover/2 inside the rings there, and so in the eroded
+// piece: the zig-zag sweeps q. And the contour then cuts a band at most a stepover wide (the lines are centred over
+// the eroded piece, the first within inset + stepover/2 of the ring): no deeper radially than a zig-zag pass.
+double zigzagInset(double stepover, double radius);
+
+// The moves that clear `level.centre`. Each connected piece of it, eroded by zigzagInset when there is a contour pass
+// and options.tool_radius is set, gets zig-zag lines along the direction,
+// `stepover` apart and centred over the (eroded) piece's extent across them (a piece left with no interval gets one line, at
 // the widest of a few heights), cut into intervals by the region (shorter than min_segment: dropped). Intervals are chained into
 // boustrophedon passes: from the end of one, to the unused interval on the next line whose end that alternates the
 // direction is nearest, joined by a feed along a straight segment in `centre` or else along the ring between them
@@ -98,9 +113,9 @@ struct ClearingOptions {
 // joined by a feed where the straight way lies in `centre`, else entered by a ramp round the ring itself, the lap
 // then running from where the ramp reached z back to there. The edges of a ring that lie in `air` are not followed
 // (the tool's disc meets no stock there): the rest of it is cut as open stretches in the ring's direction, each from
-// an air vertex (a plunge). With the contour pass every point of `centre` lies within stepover/2 (+ min_segment) of a
-// feed at z or of a ring edge in air, so every point of stock within the tool radius of `centre` is swept: a point
-// within r of a ring edge in air is no stock.
+// an air vertex (a plunge). With the contour pass every point of `centre` lies within stepover/2 + zigzagInset
+// (+ min_segment) of a feed at z or of a ring edge in air, and every point of stock within the tool radius of
+// `centre` is swept (ClearedLevel says why): a point within r of a ring edge in air is no stock.
 // Pieces are taken, and a piece's passes, cheapest start first: from either end, by the seconds of a straight rapid
 // from the tool and of the entry there (a plunge in air is quicker than a ramp), each reached as `stay_down` says.
 // Without stay_down the first point is a rapid at the clearance plane, the last a retract to it and sideways rapids are

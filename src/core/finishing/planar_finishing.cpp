@@ -303,6 +303,7 @@ ToolRun runTool(const PlanarGroup& group, GroupGeometry& g, const ShadowStack& s
   clearing.clearance_z = clearance_z;
   clearing.safe_height = kSafeHeight;
   clearing.contour_pass = true;
+  clearing.tool_radius = r;
   const double lead = std::min(r, 2.0) + options.allowance;
   const DescentLimit limit(*g.thick, r);
   std::vector<WallStretch> walls;  // every level's stretches, cut after the levels

@@ -309,10 +309,13 @@ void cutZigzag(const std::vector<RegionPiece>& pieces, const ClearingLevel& leve
                PathWriter& writer, ClearingStats& stats) {
   const ScanFrame frame(options.angle_deg);
   const RegionLocator in_air(level.air);
+  const double inset = options.contour_pass ? zigzagInset(options.stepover, options.tool_radius) : 0.0;
   std::vector<PieceZigzag> zigzags(pieces.size());
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     if (coveredByContour(pieces[i], options)) continue;
-    zigzags[i].passes = PieceScan(pieces[i].rings, frame, options).passes();
+    const Region scanned = inset > 0 ? offsetRegion(pieces[i].rings, -inset) : pieces[i].rings;
+    if (regionEmpty(scanned)) continue;
+    zigzags[i].passes = PieceScan(scanned, frame, options).passes();
     for (const Polyline& pass : zigzags[i].passes)
       zigzags[i].air.emplace_back(in_air.contains(pass.front()), in_air.contains(pass.back()));
   }
@@ -430,6 +433,11 @@ void cutContours(const std::vector<RegionPiece>& pieces, const ClearingLevel& le
 }
 
 }  // namespace
+
+double zigzagInset(double stepover, double radius) {
+  constexpr double kArcSlack = 0.05;  // mm: the eroded rings' arcs are chords, a little inside the true erosion
+  return std::max(0.0, std::min(0.5 * stepover, radius - 0.5 * stepover) - kArcSlack);
+}
 
 std::vector<ClearingPoint> clearLevel(const ClearingLevel& level, const ClearingOptions& level_options,
                                       ClearingStats* stats) {

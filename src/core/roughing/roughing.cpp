@@ -343,6 +343,7 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
   const std::vector<BodyZone> zones = bodyZones(tool);
   ClearingOptions clearing;
   clearing.stepover = roughingStepover(tool, options);
+  clearing.tool_radius = r;
   clearing.ramp_angle_deg = options.clearing.ramp_angle_deg;
   clearing.clearance_z = g.stock_top + options.clearing.clearance;
   clearing.stay_down = options.clearing.stay_down;
