@@ -405,3 +405,57 @@ TEST(PlanarFinishing, WallsAreFinishedPocketByPocketTopDown) {
   EXPECT_EQ(report.gouges, 0) << report.worst_gouge_mm;
   EXPECT_EQ(report.collisions, 0) << report.worst_collision_mm;
 }
+
+// A 100 x 60 x 80 block with a 40 x 40 pocket 70 deep, its top and the pocket's floor to face-mill: flat20's holder
+// stops it 60 mm down, so only flat20L reaches the floor. flat20 (1,150 mm/min) faces the top first and flat20L
+// (690 mm/min) follows for the floor alone: its feed time is under 85 % of flat20L doing both (71 % by the areas),
+// every floor is reached, and the simulation finds no gouge and no collision.
+TEST(PlanarFinishing, AShortToolFacesWhatItReachesBeforeALongOneTakesTheDepth) {
+  const Part part = test::stepPart(test::pocketedBlock(Vec3(0, 0, 0), Vec3(100, 60, 80), 40, 40, 70, 12),
+                                   "deep_pocket", fine());
+  const Part stock = test::stepPart(test::pocketedBlock(Vec3(-2, -2, 0), Vec3(102, 62, 80 + kSkin), 40 - 2 * kSkin,
+                                                        40 - 2 * kSkin, 70, 12 - kSkin),
+                                    "deep_pocket_stock", fine());
+  const ToolLibrary library = loadToolLibrary(kTools);
+  std::vector<const Tool*> flats;  // as finishing takes them: not the high-efficiency roughing cutters
+  for (const Tool* t : flatsLargestFirst(library))
+    if (t->max_engagement_deg == 0) flats.push_back(t);
+  PlanarGroup group;
+  group.frame = setupFrame(part, Vec3::UnitZ());
+  group.stock = test::box(Vec3(-2, -2, -2), Vec3(102, 62, 82));
+  for (int f = 0; f < static_cast<int>(part.faces.size()); ++f)
+    if (part.faces[f].type == SurfaceType::Plane && part.faces[f].normal.z() > 1 - 1e-9)
+      group.targets.push_back({f, FinishingKind::FaceMill});
+  ASSERT_EQ(group.targets.size(), 2u) << "the top and the pocket's floor";
+
+  const auto feedSeconds = [&](const PlanarResult& result) {
+    double s = 0;
+    for (const FinishingOperation& op : result.operations)
+      s += toolpathLength(op.path, MoveKind::Feed) / library.find(op.tool)->feed_mm_min * 60;
+    return s;
+  };
+  const PlanarResult result = finishPlanar(part, group, flats, FinishingOptions{});
+  ASSERT_GE(result.operations.size(), 2u);
+  EXPECT_EQ(result.operations.front().tool, "flat20");
+  EXPECT_TRUE(std::any_of(result.operations.begin(), result.operations.end(),
+                          [](const FinishingOperation& op) { return op.tool == "flat20L"; }));
+  for (const PlanarReach& r : result.reach) EXPECT_GE(r.reached, 0.99 * r.size) << "face " << r.face;
+
+  std::vector<const Tool*> long_only;  // flat20 out of the library: flat20L does both
+  for (const Tool* t : flats)
+    if (t->id != "flat20") long_only.push_back(t);
+  const PlanarResult long_result = finishPlanar(part, group, long_only, FinishingOptions{});
+  ASSERT_FALSE(long_result.operations.empty());
+  EXPECT_EQ(long_result.operations.front().tool, "flat20L");
+  std::printf("feed time: %.0f s short tool first, %.0f s with flat20L alone\n", feedSeconds(result),
+              feedSeconds(long_result));
+  EXPECT_LT(feedSeconds(result), 0.85 * feedSeconds(long_result));
+
+  const auto [path, tools] = programOf(result.operations, library);
+  VerifyOptions verify;
+  verify.resolution = 0.25;
+  verify.stock_mesh = &stock.mesh;
+  const VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, path, tools, verify);
+  EXPECT_EQ(report.gouges, 0) << report.worst_gouge_mm;
+  EXPECT_EQ(report.collisions, 0) << report.worst_collision_mm;
+}

@@ -33,8 +33,12 @@ constexpr double kThinLeft = 0.01;         // mm: strips of a floor left thinner
 constexpr double kSliver = 0.01;           // mm^2: a tool reaching less than this is no rest tool
 constexpr double kLevelMerge = 0.01;       // mm: levels closer than this are one
 constexpr double kZoneGrid = 2.0;          // mm: shank and holder bottoms' shadows on this grid (rounded down)
-constexpr std::size_t kTrialLevels = 8;
-constexpr double kTrialArc = 0.02;         // mm: a trial's cutter offsets (it compares tools; the paths use kFinishArc)     // levels a tool's trial works (spread over its levels)
+constexpr std::size_t kTrialLevels = 8;   // levels a tool's trial works (spread over its levels)
+constexpr double kTrialArc = 0.02;         // mm: a trial's cutter offsets (it compares tools; the paths use kFinishArc)
+// A tool kept from the depth by its flutes, shank or holder goes before a longer one of its diameter that reaches
+// more, when it reaches at least this share of what that one does and feeds faster: the longer tool follows for the
+// depth only (the next round), at its slower feed there, for one tool change more.
+constexpr double kShortFirstShare = 0.5;
 constexpr double kWindowMargin = 3.0;      // mm round a level's work where the exact cutter region is computed
 constexpr double kSkinSlack = 0.05;        // mm beyond the allowance that still counts as skin, not stock left
 constexpr double kFinishArc = 0.002;       // mm: chords of the cutter's offset arcs (inside them: a gouge of at most this)
@@ -444,7 +448,14 @@ ShadowStack groupShadows(const Part& part, const GroupGeometry& g, const std::ve
   return ShadowStack(g.vertices, part.mesh.triangles, heights);
 }
 
-const Tool* nextTool(const ShadowStack& shadows, const PlanarGroup& group, const GroupGeometry& g,
+// The tool to run next, and a longer one of its diameter to run after it for the depth it does not reach (the choice
+// between them was made: kShortFirstShare), or none.
+struct ToolChoice {
+  const Tool* tool = nullptr;
+  const Tool* then = nullptr;
+};
+
+ToolChoice nextTool(const ShadowStack& shadows, const PlanarGroup& group, const GroupGeometry& g,
                      const std::vector<const Tool*>& tools, const Tool* previous, const std::vector<const Tool*>& used,
                      const FinishingOptions& options) {
   std::vector<const Tool*> candidates;
@@ -455,7 +466,7 @@ const Tool* nextTool(const ShadowStack& shadows, const PlanarGroup& group, const
       continue;
     candidates.push_back(t);
   }
-  if (candidates.empty()) return nullptr;
+  if (candidates.empty()) return {};
   std::stable_sort(candidates.begin(), candidates.end(), [](const Tool* a, const Tool* b) {
     if (a->diameter != b->diameter) return a->diameter > b->diameter;
     return a->flute_length < b->flute_length;
@@ -479,10 +490,17 @@ const Tool* nextTool(const ShadowStack& shadows, const PlanarGroup& group, const
     reach.clear();
     best = std::max(evaluate(smallest), evaluate(longest));
   }
-  if (best <= kSliver) return nullptr;
-  for (const Tool* t : candidates)
-    if (evaluate(t) >= options.tools.area_fraction * best) return t;
-  return smallest;
+  if (best <= kSliver) return {};
+  for (auto chosen = candidates.begin(); chosen != candidates.end(); ++chosen) {
+    if (evaluate(*chosen) < options.tools.area_fraction * best) continue;
+    for (auto shorter = candidates.begin(); shorter != chosen; ++shorter)  // same diameter first, shortest flutes
+      if (std::abs((*shorter)->diameter - (*chosen)->diameter) < 1e-9 &&
+          (*shorter)->feed_mm_min > (*chosen)->feed_mm_min &&
+          evaluate(*shorter) >= kShortFirstShare * evaluate(*chosen))
+        return {*shorter, *chosen};
+    return {*chosen};
+  }
+  return {smallest};
 }
 
 }  // namespace
@@ -510,9 +528,14 @@ PlanarResult finishPlanar(const Part& part, const PlanarGroup& group, const std:
   const ShadowStack shadows = groupShadows(part, base, tools, options);
   std::vector<const Tool*> used;
   const Tool* previous = nullptr;
-  for (int pass = 0; pass <= options.tools.max_rest_tools && !nothingLeft(g); ++pass) {
-    const Tool* tool = nextTool(shadows, group, g, tools, previous, used, options);
+  const Tool* then = nullptr;  // the longer tool chosen to follow the last one
+  int smaller = 0;  // tools narrower than the one before them (a longer one as wide is no rest tool of the budget)
+  for (int pass = 0; !nothingLeft(g); ++pass) {
+    const ToolChoice choice = then ? ToolChoice{then} : nextTool(shadows, group, g, tools, previous, used, options);
+    const Tool* tool = choice.tool;
+    then = choice.then;
     if (!tool) break;
+    if (previous && tool->diameter < previous->diameter - 1e-9 && ++smaller > options.tools.max_rest_tools) break;
     used.push_back(tool);
     previous = tool;
     const auto start = std::chrono::steady_clock::now();
