@@ -53,7 +53,10 @@ const char* faceStatusName(FaceStatus status) {
 namespace {
 
 constexpr double kFinished = 0.99;   // a face whose reached share is at least this counts as finished
-constexpr double kRetryShare = 0.5;  // a face reached less than this by its choice tries its next choice
+// A face reached at most this share by its choice tries its next choice. "At most", to within kShareNoise: a face
+// whose walls a tool reaches half way down is at the threshold exactly, and its retry must not hang on the rounding.
+constexpr double kRetryShare = 0.5;
+constexpr double kShareNoise = 1e-9;
 constexpr int kRounds = 3;           // choices tried per face at most
 constexpr double kProgressSeconds = 0.25;  // reports while a round's groups are planned
 constexpr double kSpotPointDeg = 90;  // a spot drill's point
@@ -543,7 +546,7 @@ FinishingPlan planFinishing(const FinishingInput& in, const FinishingOptions& op
     };
     for (const FaceAssignment& a : assignment) {
       const int f = a.face;
-      if (tally.share[f] >= kRetryShare) continue;
+      if (tally.share[f] > kRetryShare + kShareNoise) continue;
       int next = tried[f] + 1;
       while (next < static_cast<int>(a.choices.size()) && a.choices[next].hole >= 0) ++next;  // holes: made above
       if (next >= static_cast<int>(a.choices.size())) continue;
