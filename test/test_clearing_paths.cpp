@@ -96,8 +96,10 @@ double worstSweep(const Region& centre, const std::vector<ClearingPoint>& moves,
                   double grid = 0.5, const Region& air = {}) {
   std::vector<Segment> feeds = feedsAtLevel(moves, z);
   for (const Ring& ring : regionRings(centre))
-    for (std::size_t i = 0; i < ring.size(); ++i)
-      if (segmentInside(air, ring[i], ring[(i + 1) % ring.size()])) feeds.push_back({ring[i], ring[(i + 1) % ring.size()]});
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const Point2& next = ring[(i + 1) % ring.size()];
+      if (segmentInside(air, ring[i], next)) feeds.push_back({ring[i], next});
+    }
   const Region reach = offsetRegion(centre, r);
   Point2 lo(1e9, 1e9), hi(-1e9, -1e9);
   for (const Ring& ring : regionRings(reach))

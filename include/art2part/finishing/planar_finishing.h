@@ -62,12 +62,12 @@ struct PlanarResult {
 };
 
 // Finishes the group's targets with the given flat end mills, tool after tool, each over what the ones before left
-// (rest finishing), at most options.tools.max_rest_tools of them narrower than the one before: each time the first (largest diameter, then
-// shortest flutes) that reaches at least options.tools.area_fraction of what the most capable candidate reaches (the
-// smallest for narrow corners, the longest-fluted for deep walls), or before it a faster one of its diameter with
-// shorter flutes that reaches at least half what it does (the longer one then follows for the depth); after the
-// first, only tools at most half the previous diameter, or as wide with longer flutes. `part` is the solid being machined (closed). Throws InputError for
-// an empty tool list or a tool that is not a flat end mill.
+// (rest finishing), at most options.tools.max_rest_tools of them narrower than the one before: each time the first
+// (largest diameter, then shortest flutes) that reaches at least options.tools.area_fraction of what the most capable
+// candidate reaches (the smallest for narrow corners, the longest-fluted for deep walls), or before it a faster one of
+// its diameter with shorter flutes that reaches at least half what it does (the longer one then follows for the
+// depth); after the first, only tools at most half the previous diameter, or as wide with longer flutes. `part` is the
+// solid being machined (closed). Throws InputError for an empty tool list or a tool that is not a flat end mill.
 PlanarResult finishPlanar(const Part& part, const PlanarGroup& group, const std::vector<const Tool*>& tools,
                           const FinishingOptions& options);
 

@@ -99,15 +99,14 @@ struct ClearingOptions {
 double zigzagInset(double stepover, double radius);
 
 // The moves that clear `level.centre`. Each connected piece of it, eroded by zigzagInset when there is a contour pass
-// and options.tool_radius is set, gets zig-zag lines along the direction,
-// `stepover` apart and centred over the (eroded) piece's extent across them (a piece left with no interval gets one line, at
-// the widest of a few heights), cut into intervals by the region (shorter than min_segment: dropped). Intervals are chained into
-// boustrophedon passes: from the end of one, to the unused interval on the next line whose end that alternates the
-// direction is nearest, joined by a feed along a straight segment in `centre` or else along the ring between them
-// (round an island); where there is none, the pass ends and the next one starts at the lowest unused interval, after a
-// retract to the clearance plane, a rapid above the start and a rapid down to top + safe_height. A pass is entered
-// at an end in `air` by a plunge; elsewhere by a ramp at ramp_angle_deg forth and back
-// along its first interval (or its first 0.5 mm, or a short segment in `centre`; failing all, a plunge counted in
+// and options.tool_radius is set, gets zig-zag lines along the direction, `stepover` apart and centred over the
+// (eroded) piece's extent across them (a piece left with no interval gets one line, at the widest of a few heights),
+// cut into intervals by the region (shorter than min_segment: dropped). Intervals are chained into boustrophedon
+// passes: from the end of one, to the unused interval on the next line whose end that alternates the direction is
+// nearest, joined by a feed along a straight segment in `centre` or else along the ring between them (round an
+// island); where there is none, the pass ends and the next one starts at the lowest unused interval, after a retract
+// to the clearance plane, a rapid above the start and a rapid down to top + safe_height. A pass is entered at an end
+// in `air` by a plunge; elsewhere by a ramp at ramp_angle_deg forth and back along its first interval (or its first 0.5 mm, or a short segment in `centre`; failing all, a plunge counted in
 // plunges_into_stock), stopping where it reaches z and feeding back to the start. Then, if asked, each ring of
 // `centre` (perimeter at least min_segment), nearest first, followed once at z from its vertex nearest the tool:
 // joined by a feed where the straight way lies in `centre`, else entered by a ramp round the ring itself, the lap
