@@ -435,7 +435,9 @@ void cutContours(const std::vector<RegionPiece>& pieces, const ClearingLevel& le
 }  // namespace
 
 double zigzagInset(double stepover, double radius) {
-  constexpr double kArcSlack = 0.05;  // mm: the eroded rings' arcs are chords, a little inside the true erosion
+  // mm: the eroded rings lie on the region's grid and their arcs are chords: the inset is taken this much smaller,
+  // so its bounds hold through the rounding.
+  constexpr double kArcSlack = 0.05;
   return std::max(0.0, std::min(0.5 * stepover, radius - 0.5 * stepover) - kArcSlack);
 }
 
