@@ -81,6 +81,18 @@ Program programOf(const std::vector<FinishingOperation>& operations, const ToolL
   return program;
 }
 
+// The simulation's judge: `path` swept through `stock` (what roughing left) at `resolution` mm gouges nothing of the
+// part and no shank or holder meets the stock.
+void expectNoGougeNorCollision(const Part& part, const Toolpath& path, const std::vector<Tool>& tools,
+                               const Mesh& stock, double resolution) {
+  VerifyOptions verify;
+  verify.resolution = resolution;
+  verify.stock_mesh = &stock;
+  const VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, path, tools, verify);
+  EXPECT_EQ(report.gouges, 0) << report.worst_gouge_mm;
+  EXPECT_EQ(report.collisions, 0) << report.worst_collision_mm;
+}
+
 // The library's flat end mills, largest first (shortest flutes first among equals), as finishing tries them.
 std::vector<const Tool*> flatsLargestFirst(const ToolLibrary& library) {
   std::vector<const Tool*> flats;
@@ -322,12 +334,7 @@ void expectLinksStayDown(const Part& part, PlanarGroup group, double below) {
   EXPECT_GT(low_links, 0);
   EXPECT_LT(rapid, blind_rapid);
   EXPECT_LT(climb(path), 0.8 * climb(blind));
-  VerifyOptions verify;
-  verify.resolution = 0.1;
-  verify.stock_mesh = &pocketStock().mesh;
-  const VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, path, tools, verify);
-  EXPECT_EQ(report.gouges, 0) << report.worst_gouge_mm;
-  EXPECT_EQ(report.collisions, 0) << report.worst_collision_mm;
+  expectNoGougeNorCollision(part, path, tools, pocketStock().mesh, 0.1);
 }
 
 }  // namespace
@@ -398,12 +405,7 @@ TEST(PlanarFinishing, WallsAreFinishedPocketByPocketTopDown) {
     crossings += path[i].tool == path[i - 1].tool && (path[i].tip.x() > 60) != (path[i - 1].tip.x() > 60);
   std::printf("%zu operations, %d crossings between the pockets\n", result.operations.size(), crossings);
   EXPECT_LE(crossings, static_cast<int>(result.operations.size()));
-  VerifyOptions verify;
-  verify.resolution = 0.2;
-  verify.stock_mesh = &stock.mesh;
-  const VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, path, tools, verify);
-  EXPECT_EQ(report.gouges, 0) << report.worst_gouge_mm;
-  EXPECT_EQ(report.collisions, 0) << report.worst_collision_mm;
+  expectNoGougeNorCollision(part, path, tools, stock.mesh, 0.2);
 }
 
 // A 100 x 60 x 80 block with a 40 x 40 pocket 70 deep, its top and the pocket's floor to face-mill: flat20's holder
@@ -452,10 +454,5 @@ TEST(PlanarFinishing, AShortToolFacesWhatItReachesBeforeALongOneTakesTheDepth) {
   EXPECT_LT(feedSeconds(result), 0.85 * feedSeconds(long_result));
 
   const auto [path, tools] = programOf(result.operations, library);
-  VerifyOptions verify;
-  verify.resolution = 0.25;
-  verify.stock_mesh = &stock.mesh;
-  const VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, path, tools, verify);
-  EXPECT_EQ(report.gouges, 0) << report.worst_gouge_mm;
-  EXPECT_EQ(report.collisions, 0) << report.worst_collision_mm;
+  expectNoGougeNorCollision(part, path, tools, stock.mesh, 0.25);
 }
