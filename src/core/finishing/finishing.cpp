@@ -19,11 +19,10 @@
 #include "art2part/finishing/admissible.h"
 #include "art2part/finishing/face_assignment.h"
 #include "art2part/finishing/planar_finishing.h"
-#include "art2part/finishing/hole_links.h"
 #include "art2part/finishing/stock_after_roughing.h"
 #include "art2part/geometry/solid_closure.h"
-#include "art2part/geometry/travel_order.h"
 #include "art2part/roughing/shadow.h"
+#include "finishing_context.h"
 
 namespace art2part {
 
@@ -49,6 +48,59 @@ const char* faceStatusName(FaceStatus status) {
   }
   return "?";
 }
+
+namespace finishing_detail {
+
+SetupFrame frameFor(const Part& part, const Setup& setup, const Vec3& d) {
+  if (setup.frame.z.dot(d) > std::cos(1e-6)) return setup.frame;
+  return setupFrame(part, d);
+}
+
+bool setupsOwnDirection(const Setup& setup, const Vec3& d) { return d.dot(setup.frame.z) > std::cos(1e-6); }
+
+std::vector<SlabState> stockLeftAlong(const Context& c, int setup_index, const Vec3& direction) {
+  const Setup& setup = c.in.setups.setups[setup_index];
+  if (setupsOwnDirection(setup, direction) && setup_index < static_cast<int>(c.in.roughing.stock_left.size()))
+    return c.in.roughing.stock_left[setup_index];
+  return c.after_roughing.slabs(setup_index, frameFor(c.in.part, setup, direction));
+}
+
+// What roughing left along a group's direction beyond the skins finishing leaves its tools (stockBeyondSkin): beyond
+// the allowance for planar finishing, beyond the surface skin for surface finishing.
+struct StockBeyond {
+  std::vector<SlabState> allowance, surface_skin;
+};
+
+// StockBeyond worked out once per setup and direction (the part's shadows at the slabs, the most of its work, once for
+// both): a group's planar and surface finishing, and the groups of later rounds along the same direction, ask for the
+// same. Threads may ask side by side; each answer is worked out once, by the first thread to ask for it.
+class StockBeyondCache {
+ public:
+  const StockBeyond& get(int setup, const Vec3& direction, const std::function<StockBeyond()>& work_out) {
+    std::shared_ptr<Entry> entry;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      std::shared_ptr<Entry>& slot = kept_[Key{setup, direction.x(), direction.y(), direction.z()}];
+      if (!slot) slot = std::make_shared<Entry>();
+      entry = slot;
+    }
+    std::call_once(entry->once, [&] { entry->stock = work_out(); });
+    return entry->stock;
+  }
+
+ private:
+  struct Entry {
+    std::once_flag once;
+    StockBeyond stock;
+  };
+  using Key = std::tuple<int, double, double, double>;
+  std::mutex mutex_;
+  std::map<Key, std::shared_ptr<Entry>> kept_;
+};
+
+}  // namespace finishing_detail
+
+using namespace finishing_detail;
 
 namespace {
 
@@ -94,33 +146,12 @@ std::vector<const Tool*> toolsOfType(const ToolLibrary& library, ToolType type) 
   return tools;
 }
 
-// The frame of a direction within a setup: the setup's own when it is the setup's direction.
-SetupFrame frameFor(const Part& part, const Setup& setup, const Vec3& d) {
-  if (setup.frame.z.dot(d) > std::cos(1e-6)) return setup.frame;
-  return setupFrame(part, d);
-}
-
 // A group of faces finished along one direction in one setup.
 struct Group {
   int setup = 0;
   Vec3 direction = Vec3::UnitZ();
   std::vector<PlanarTarget> planar;
   std::vector<int> surface;  // faces
-};
-
-// What the planner believes of each face: the best share of it reached by any choice tried, which choice, and why
-// not all of it.
-struct Tally {
-  std::vector<double> share;
-  std::vector<int> choice;  // index into the face's choices that reached the best share (-1: none yet)
-  std::vector<std::string> shortfall;
-  void note(int face, int choice_index, double reached_share, const std::string& why) {
-    if (reached_share > share[face] + 1e-12 || this->choice[face] < 0) {
-      share[face] = std::max(share[face], reached_share);
-      this->choice[face] = choice_index;
-      shortfall[face] = why;
-    }
-  }
 };
 
 // What planning one group gives: its operations and its notes on its faces, taken into the plan and the tally in the
@@ -136,51 +167,6 @@ struct GroupOutcome {
   void note(int face, int choice, double share, const std::string& why) { notes.push_back({face, choice, share, why}); }
 };
 
-// What roughing left along a group's direction beyond the skins finishing leaves its tools (stockBeyondSkin): beyond
-// the allowance for planar finishing, beyond the surface skin for surface finishing.
-struct StockBeyond {
-  std::vector<SlabState> allowance, surface_skin;
-};
-
-// StockBeyond worked out once per setup and direction (the part's shadows at the slabs, the most of its work, once for
-// both): a group's planar and surface finishing, and the groups of later rounds along the same direction, ask for the
-// same. Threads may ask side by side; each answer is worked out once, by the first thread to ask for it.
-class StockBeyondCache {
- public:
-  const StockBeyond& get(int setup, const Vec3& direction, const std::function<StockBeyond()>& work_out) {
-    std::shared_ptr<Entry> entry;
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      std::shared_ptr<Entry>& slot = kept_[Key{setup, direction.x(), direction.y(), direction.z()}];
-      if (!slot) slot = std::make_shared<Entry>();
-      entry = slot;
-    }
-    std::call_once(entry->once, [&] { entry->stock = work_out(); });
-    return entry->stock;
-  }
-
- private:
-  struct Entry {
-    std::once_flag once;
-    StockBeyond stock;
-  };
-  using Key = std::tuple<int, double, double, double>;
-  std::mutex mutex_;
-  std::map<Key, std::shared_ptr<Entry>> kept_;
-};
-
-// The context every group of a plan shares.
-struct Context {
-  const FinishingInput& in;
-  const FinishingOptions& options;
-  const Part& solid;
-  const Mesh& stock;
-  const std::vector<const Tool*>& flats;
-  const std::vector<const Tool*>& balls;
-  const std::vector<std::vector<int>>& triangles;
-  StockAfterRoughing& after_roughing;  // the stock along directions that are no setup's own
-  StockBeyondCache& stock_beyond;
-};
 
 std::string number(double v) { return numberText(v, 3); }
 
@@ -211,16 +197,7 @@ int toolClass(const Tool* tool) {
 }
 
 
-bool setupsOwnDirection(const Setup& setup, const Vec3& d) { return d.dot(setup.frame.z) > std::cos(1e-6); }
 
-// What roughing left in the group's frame: the setup's slabs when the group's direction is the setup's own, else
-// the in-process model's along it (a 5-axis plan's tilted directions).
-std::vector<SlabState> stockLeftAlong(const Context& c, int setup_index, const Vec3& direction) {
-  const Setup& setup = c.in.setups.setups[setup_index];
-  if (setupsOwnDirection(setup, direction) && setup_index < static_cast<int>(c.in.roughing.stock_left.size()))
-    return c.in.roughing.stock_left[setup_index];
-  return c.after_roughing.slabs(setup_index, frameFor(c.in.part, setup, direction));
-}
 std::vector<SlabState> stockLeftAlong(const Context& c, const Group& group) {
   return stockLeftAlong(c, group.setup, group.direction);
 }
@@ -301,130 +278,6 @@ void runSurfaceGroup(const Context& c, const Group& group, const std::vector<int
   op.path = std::move(r.path);
   op.plan_seconds = r.seconds;
   out.ops.push_back(std::move(op));
-}
-
-// Holes: a spot and a drill run per setup and drill (one signature's tool load), a helix per hole. A through hole
-// reached from its far end is made from there (reversedHole), its method chosen again for that end.
-void makeHoles(const Context& c, const std::vector<FaceAssignment>& assignment, FinishingPlan& plan, Tally& tally,
-               std::vector<std::vector<FinishingOperation>>& per_setup) {
-  const Part& part = c.in.part;
-  std::vector<Hole>& holes = plan.holes;
-  std::vector<HoleMachining>& methods = plan.hole_methods;
-  // Runs: (setup, axis, drill id) -> holes, and (setup, axis) -> holes to spot; an axis by its index in `axes` (a 5-axis
-  // setup makes holes along several).
-  std::map<std::tuple<int, int, std::string>, std::vector<int>> drilled;
-  std::map<std::pair<int, int>, std::vector<int>> spotted;
-  std::vector<Vec3> axes;
-  auto axisIndex = [&](const Vec3& axis) {
-    for (std::size_t i = 0; i < axes.size(); ++i)
-      if (axes[i].dot(axis) > std::cos(c.options.holes.axis_tolerance_deg * kPi / 180)) return static_cast<int>(i);
-    axes.push_back(axis);
-    return static_cast<int>(axes.size()) - 1;
-  };
-  std::vector<char> turned(holes.size(), 0);
-  std::vector<signed char> clear_over(holes.size(), -1);  // per hole, once known: 1 nothing over its mouth, 0 stock
-  for (const FaceAssignment& a : assignment) {
-    if (a.choices.empty() || a.choices.front().hole < 0) continue;
-    const FinishingChoice& choice = a.choices.front();
-    const int h = choice.hole;
-    if (!turned[h] && choice.direction.dot(holes[h].axis) < 0) {
-      turned[h] = 1;
-      holes[h] = reversedHole(part, c.in.holes[h], c.options.holes);
-      methods[h] = chooseHoleMethod(holes[h], c.in.library, c.options.holes);
-    }
-    const HoleMachining& m = methods[h];
-    if (m.method == HoleMethod::None) continue;
-    // Along a tilted direction roughing may have left stock over the mouth (its own setup direction cleared above it).
-    auto blocked = [&](const std::string& id) {
-      const Tool* tool = id.empty() ? nullptr : c.in.library.find(id);
-      return tool && !c.after_roughing.clearOverHole(choice.setup, holes[h], *tool, c.options.tools.holder_margin);
-    };
-    if (clear_over[h] < 0)
-      clear_over[h] = setupsOwnDirection(c.in.setups.setups[choice.setup], choice.direction) ||
-                      !(blocked(m.drill) || (m.method == HoleMethod::Drill && blocked(m.spot)));
-    if (!clear_over[h]) {
-      for (int f : holes[h].bore_faces)
-        tally.note(f, 0, 0.0, "roughing left stock over its mouth along its axis in setup " +
-                                  std::to_string(choice.setup));
-      continue;
-    }
-    const int axis = axisIndex(holes[h].axis);
-    auto& list = drilled[{choice.setup, axis, m.method == HoleMethod::Drill ? m.drill : "helix:" + m.drill}];
-    if (std::find(list.begin(), list.end(), h) == list.end()) list.push_back(h);
-    if (m.method == HoleMethod::Drill && !m.spot.empty()) {
-      auto& spots = spotted[{choice.setup, axis}];
-      if (std::find(spots.begin(), spots.end(), h) == spots.end()) spots.push_back(h);
-    }
-  }
-  // Each run's holes in the order that travels least between them (the face order crossed the part from hole to hole).
-  auto inTravelOrder = [&](std::vector<int>& group) {
-    std::vector<Vec3> mouths;
-    for (int h : group) mouths.push_back(holes[h].mouth);
-    std::vector<int> ordered;
-    for (int k : travelOrder(mouths, holes[group.front()].axis)) ordered.push_back(group[k]);
-    group = std::move(ordered);
-  };
-  for (auto& entry : spotted) inTravelOrder(entry.second);
-  for (auto& entry : drilled) inTravelOrder(entry.second);
-  // The rapids between holes at the setup's clearance plane: over the stock's top along the holes' axis.
-  auto clearanceAbove = [&](const std::vector<int>& group) {
-    const Vec3& d = holes[group.front()].axis;
-    double top = -1e300, mouth = -1e300;
-    for (const Vec3& v : c.stock.vertices) top = std::max(top, v.dot(d));
-    for (int h : group) mouth = std::max(mouth, holes[h].mouth.dot(d));
-    return std::max(c.options.holes.retract_height, top + c.options.clearance - mouth);
-  };
-  // Between the holes of a run, the lowest crossing the stock roughing left proves clear (hole_links.h).
-  auto linkFor = [&](int setup, const std::vector<int>& group, const Tool& tool) {
-    const Vec3 axis = holes[group.front()].axis.normalized();
-    return linkOverStock(stockLeftAlong(c, setup, axis), frameFor(part, c.in.setups.setups[setup], axis), tool,
-                         c.options.tools.holder_margin);
-  };
-  auto drillRun = [&](int setup, const std::vector<int>& group, const Tool& tool, bool spot) {
-    std::vector<Hole> list;
-    for (int h : group) list.push_back(holes[h]);
-    FinishingOperation op;
-    op.setup = setup;
-    op.kind = FinishingKind::Drill;
-    op.tool = tool.id;
-    op.direction = list.front().axis;
-    op.path =
-        drillingPath(list, tool, spot, setup, clearanceAbove(group), c.options.holes, linkFor(setup, group, tool));
-    for (int h : group) op.faces.insert(op.faces.end(), holes[h].bore_faces.begin(), holes[h].bore_faces.end());
-    if (spot) op.note = "spot drilling";
-    return op;
-  };
-  for (const auto& [key, group] : spotted)
-    if (const Tool* spot = c.in.library.find(methods[group.front()].spot)) {
-      const int setup = key.first;
-      FinishingOperation op = drillRun(setup, group, *spot, true);
-      if (!op.path.empty()) per_setup[setup].push_back(std::move(op));
-    }
-  for (const auto& [key, group] : drilled) {
-    const auto& [setup, axis, id] = key;
-    const bool helix = id.rfind("helix:", 0) == 0;
-    const Tool* tool = c.in.library.find(helix ? id.substr(6) : id);
-    if (!tool) continue;
-    FinishingOperation op;
-    if (helix) {
-      op.setup = setup;
-      op.kind = FinishingKind::Helix;
-      op.tool = tool->id;
-      op.direction = holes[group.front()].axis;
-      std::vector<Hole> list;
-      for (int h : group) {
-        op.faces.insert(op.faces.end(), holes[h].bore_faces.begin(), holes[h].bore_faces.end());
-        list.push_back(holes[h]);
-      }
-      op.path = helixPaths(list, *tool, setup, clearanceAbove(group), c.options.holes, linkFor(setup, group, *tool));
-    } else {
-      op = drillRun(setup, group, *tool, false);
-    }
-    if (op.path.empty()) continue;
-    for (int h : group)
-      for (int f : holes[h].bore_faces) tally.note(f, 0, 1.0, methods[h].reason);
-    per_setup[setup].push_back(std::move(op));
-  }
 }
 
 // Each setup's operations in machining order, each tool loaded once; the plan's operations, tool changes and time.
