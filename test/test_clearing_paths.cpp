@@ -549,6 +549,33 @@ TEST(ClearingPaths, APassBeginsAtTheEndThatTakesLessTimeToReachAndEnter) {
   }
 }
 
+// Open stock whose edge lies in air along one side (the band round a block, a pocket open to the outside): the
+// zig-zag, kept zigzagInset inside the rings, no longer reaches the air band, and each pass used to ramp down at its
+// start (ANC101's first setups ramped 44 m in all, 18 % of their cutting). A pass within a diameter of air is entered
+// from the side: a plunge in the air, a straight feed to its start; the contour's open stretch starts in air too.
+TEST(ClearingPaths, PassesNearAirAreEnteredFromTheSideNotByARamp) {
+  const Region centre = region({rectangle(0, 0, 80, 40)});
+  const ClearingLevel level = levelOf(centre, region({rectangle(-1, -1, 1, 41)}));
+  ClearingOptions options = optionsOf(4, 90, true);  // lines along y: each pass starts a line away from the band
+  options.tool_radius = 5;
+  ClearingStats stats;
+  const std::vector<ClearingPoint> moves = clearChecked(level, options, stats);
+  EXPECT_EQ(stats.ramps, 0);
+  EXPECT_GE(stats.plunges_in_air, 1);
+  const auto first_cut = std::find_if(moves.begin(), moves.end(),
+                                      [](const ClearingPoint& m) { return m.move != ClearingMove::Rapid; });
+  ASSERT_NE(first_cut, moves.end());
+  EXPECT_EQ(first_cut->move, ClearingMove::Plunge);
+  EXPECT_TRUE(regionContains(level.air, xy(*first_cut)));
+  EXPECT_LE(worstSweep(centre, moves, level.z, options.tool_radius, 1.0, level.air), 0.06);
+
+  // Where a ramp is quicker (steep enough that ramping 4 mm down takes less than the plunge and the feed in), a ramp.
+  options.ramp_angle_deg = 60;
+  ClearingStats steep;
+  clearChecked(level, options, steep);
+  EXPECT_GE(steep.ramps, 1);
+}
+
 TEST(ClearingPaths, RandomRegionsAreSound) {
   std::mt19937 random(11);
   std::uniform_real_distribution<double> unit(0, 1);

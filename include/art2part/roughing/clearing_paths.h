@@ -106,9 +106,12 @@ double zigzagInset(double stepover, double radius);
 // nearest, joined by a feed along a straight segment in `centre` or else along the ring between them (round an
 // island); where there is none, the pass ends and the next one starts at the lowest unused interval, after a retract
 // to the clearance plane, a rapid above the start and a rapid down to top + safe_height. A pass is entered at an end
-// in `air` by a plunge; elsewhere by a ramp at ramp_angle_deg forth and back along its first interval (or its first
-// 0.5 mm, or a short segment in `centre`; failing all, a plunge counted in plunges_into_stock), stopping where it
-// reaches z and feeding back to the start. Then, if asked, each ring of
+// in `air` by a plunge; from the side where air lies within a diameter (tool_radius set) by a straight way in
+// `centre` and that is quicker than a ramp (a plunge at the nearest air point, a feed to the end: the zig-zag, kept
+// zigzagInset inside the rings, no longer reaches the air band round open stock); elsewhere by a ramp at
+// ramp_angle_deg forth and back along its first interval (or its first 0.5 mm, or a short segment in `centre`;
+// failing all, a plunge counted in plunges_into_stock), stopping where it reaches z and feeding back to the start.
+// Then, if asked, each ring of
 // `centre` (perimeter at least min_segment), nearest first, followed once at z from its vertex nearest the tool:
 // joined by a feed where the straight way lies in `centre`, else entered by a ramp round the ring itself, the lap
 // then running from where the ramp reached z back to there. The edges of a ring that lie in `air` are not followed

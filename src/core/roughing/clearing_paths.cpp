@@ -254,20 +254,36 @@ class PieceScan {
 
 // Moves at one level, with the entries, links and retracts between cuts.
 
-// Whether each end of a pass lies in air (front, back).
-using AirEnds = std::pair<bool, bool>;
+// How a pass may be entered at one end: by a plunge where the end lies in air, else from the side (PathWriter::
+// sideEntry) where there is a way in, else by a ramp.
+struct PassEnd {
+  bool air = false;
+  std::optional<Point2> side;
+};
+using PassEnds = std::pair<PassEnd, PassEnd>;  // front, back
 
-// What starting a pass costs (PathWriter::startSeconds) at its cheaper end, and whether that is its back.
-std::pair<double, bool> startCost(const Polyline& pass, const AirEnds& air, const PathWriter& writer) {
-  const double front = writer.startSeconds(pass.front(), air.first);
-  const double back = writer.startSeconds(pass.back(), air.second);
+PassEnd passEnd(const Point2& end, const RegionLocator& in_air, const PathWriter& writer) {
+  PassEnd e;
+  e.air = in_air.contains(end);
+  if (!e.air) e.side = writer.sideEntry(end);
+  return e;
+}
+
+double startSeconds(const Point2& end, const PassEnd& how, const PathWriter& writer) {
+  return how.side ? writer.sideStartSeconds(end, *how.side) : writer.startSeconds(end, how.air);
+}
+
+// What starting a pass costs at its cheaper end, and whether that is its back.
+std::pair<double, bool> startCost(const Polyline& pass, const PassEnds& ends, const PathWriter& writer) {
+  const double front = startSeconds(pass.front(), ends.first, writer);
+  const double back = startSeconds(pass.back(), ends.second, writer);
   return {std::min(front, back), back < front};
 }
 
-// A piece's zig-zag passes, and whether each end lies in air (looked up once: the passes are weighed at each choice).
+// A piece's zig-zag passes, and how each end may be entered (looked up once: the passes are weighed at each choice).
 struct PieceZigzag {
   std::vector<Polyline> passes;
-  std::vector<AirEnds> air;
+  std::vector<PassEnds> ends;
 };
 
 // The piece, among those with passes left, with the cheapest pass start (the first, for the first).
@@ -277,26 +293,28 @@ std::size_t nextPiece(const std::vector<PieceZigzag>& pieces, const std::vector<
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     if (done[i]) continue;
     for (std::size_t k = 0; k < pieces[i].passes.size(); ++k) {
-      const double cost = startCost(pieces[i].passes[k], pieces[i].air[k], writer).first;
+      const double cost = startCost(pieces[i].passes[k], pieces[i].ends[k], writer).first;
       if (cost < best_cost) best = i, best_cost = cost;
     }
   }
   return best;
 }
 
-// The unused pass with the cheapest start, turned to start there (startCost).
-Polyline nextPass(std::vector<Polyline>& passes, std::vector<bool>& used, const std::vector<AirEnds>& air,
+// The unused pass with the cheapest start, turned to start there (startCost), its side entry put in front.
+Polyline nextPass(std::vector<Polyline>& passes, std::vector<bool>& used, const std::vector<PassEnds>& ends,
                   const PathWriter& writer) {
   std::size_t best = passes.size();
   std::pair<double, bool> best_cost{std::numeric_limits<double>::infinity(), false};
   for (std::size_t k = 0; k < passes.size(); ++k) {
     if (used[k]) continue;
-    const std::pair<double, bool> cost = startCost(passes[k], air[k], writer);
+    const std::pair<double, bool> cost = startCost(passes[k], ends[k], writer);
     if (cost.first < best_cost.first) best = k, best_cost = cost;
   }
   used[best] = true;
   Polyline pass = std::move(passes[best]);
   if (best_cost.second) std::reverse(pass.begin(), pass.end());
+  const PassEnd& start = best_cost.second ? ends[best].second : ends[best].first;
+  if (start.side) pass.insert(pass.begin(), *start.side);
   return pass;
 }
 
@@ -317,14 +335,14 @@ void cutZigzag(const std::vector<RegionPiece>& pieces, const ClearingLevel& leve
     if (regionEmpty(scanned)) continue;
     zigzags[i].passes = PieceScan(scanned, frame, options).passes();
     for (const Polyline& pass : zigzags[i].passes)
-      zigzags[i].air.emplace_back(in_air.contains(pass.front()), in_air.contains(pass.back()));
+      zigzags[i].ends.emplace_back(passEnd(pass.front(), in_air, writer), passEnd(pass.back(), in_air, writer));
   }
   std::vector<bool> done(zigzags.size(), false);
   for (std::size_t i = nextPiece(zigzags, done, writer); i < zigzags.size(); i = nextPiece(zigzags, done, writer)) {
     done[i] = true;
     std::vector<bool> used(zigzags[i].passes.size(), false);
     for (std::size_t n = 0; n < zigzags[i].passes.size(); ++n) {
-      const Polyline pass = nextPass(zigzags[i].passes, used, zigzags[i].air, writer);
+      const Polyline pass = nextPass(zigzags[i].passes, used, zigzags[i].ends, writer);
       if (!writer.linkTo(pass.front(), options.stay_down, writer.entrySeconds(pass.front()))) writer.enterPass(pass);
       for (const Point2& p : pass) writer.feed(p);
       ++stats.passes;

@@ -131,6 +131,39 @@ class PathWriter {
     return (placed() ? 60 * (start - at()).norm() / rapid_ : 0.0) + entrySeconds(in_air);
   }
 
+  // What starting a cut at `start` costs when it is entered from the side, from the air point `side`
+  // (sideEntry): the way to `side` at the rapid rate, a plunge there and a feed to `start`.
+  double sideStartSeconds(const Point2& start, const Point2& side) const {
+    return startSeconds(side, true) + 60 * (start - side).norm() / feed_;
+  }
+
+  // A point of the level's air from which a cut starting at `start` (not in air) is entered more quickly than by a
+  // ramp: a plunge there, then a straight feed to `start` inside `centre` that runs at most a tool diameter
+  // (ClearingOptions::tool_radius; 0: none) through the stock at the level, as a zig-zag line does. The nearest
+  // point of the air's rings, moved into the air; none where that does not hold.
+  std::optional<Point2> sideEntry(const Point2& start) const {
+    const double drop = safe_z_ - level_.z;
+    const double limit = std::min(2 * options_.tool_radius, 2 * drop / slope_ - drop);
+    if (!(limit > 0) || regionEmpty(level_.air)) return std::nullopt;
+    double best = limit * limit;
+    std::optional<std::pair<Point2, Point2>> edge;
+    double at = 0;
+    for (const ClipperLib::Path& path : level_.air)
+      for (std::size_t i = 0; i < path.size(); ++i) {
+        const Point2 a = fromRegionPoint(path[i]), b = fromRegionPoint(path[(i + 1) % path.size()]);
+        const Point2 d = b - a;
+        const double length2 = d.squaredNorm();
+        if (length2 == 0) continue;
+        const double t = std::clamp((start - a).dot(d) / length2, 0.0, 1.0);
+        const double distance2 = (a + t * d - start).squaredNorm();
+        if (distance2 < best) best = distance2, edge.emplace(a, b), at = t;
+      }
+    if (!edge) return std::nullopt;
+    const Point2 side = insetOnEdge(edge->first, edge->second, at);
+    if (!regionContains(level_.air, side) || !segmentInside(level_.centre, side, start)) return std::nullopt;
+    return side;
+  }
+
   // Down to the level at the start of an open pass: a plunge in air, else a ramp forth and back along the pass's
   // first stretch (at least kMinRampRun long), else along a short segment around the start, else a plunge (counted).
   // The tool ends at the start of the pass.
