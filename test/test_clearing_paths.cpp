@@ -552,7 +552,7 @@ TEST(ClearingPaths, APassBeginsAtTheEndThatTakesLessTimeToReachAndEnter) {
 // Open stock whose edge lies in air along one side (the band round a block, a pocket open to the outside): the
 // zig-zag, kept zigzagInset inside the rings, no longer reaches the air band, and each pass used to ramp down at its
 // start (ANC101's first setups ramped 44 m in all, 18 % of their cutting). A pass within a diameter of air is entered
-// from the side: a plunge in the air, a straight feed to its start; the contour's open stretch starts in air too.
+// from the side: a plunge in the air, a straight feed to its start; so is a closed contour ring near air.
 TEST(ClearingPaths, PassesNearAirAreEnteredFromTheSideNotByARamp) {
   const Region centre = region({rectangle(0, 0, 80, 40)});
   const ClearingLevel level = levelOf(centre, region({rectangle(-1, -1, 1, 41)}));
@@ -574,6 +574,20 @@ TEST(ClearingPaths, PassesNearAirAreEnteredFromTheSideNotByARamp) {
   ClearingStats steep;
   clearChecked(level, options, steep);
   EXPECT_GE(steep.ramps, 1);
+
+  // A band round a part, its outer edge in air: the contour alone sweeps it, and its closed ring round the part, 9 mm
+  // from the air, is entered from there rather than by a ramp round the part.
+  const Region band = subtract(region({rectangle(0, 0, 60, 40)}), region({rectangle(10, 10, 50, 30)}));
+  const ClearingLevel round = levelOf(band, subtract(band, region({rectangle(1, 1, 59, 39)})));
+  ClearingOptions contour_only = optionsOf(12, 0, true);
+  contour_only.tool_radius = 6;
+  ClearingStats ring_stats;
+  const std::vector<ClearingPoint> ring_moves = clearChecked(round, contour_only, ring_stats);
+  EXPECT_EQ(ring_stats.passes, 0);
+  EXPECT_EQ(ring_stats.contours, 1);
+  EXPECT_EQ(ring_stats.ramps, 0);
+  EXPECT_EQ(ring_stats.plunges_in_air, 1);
+  EXPECT_LE(worstSweep(band, ring_moves, round.z, contour_only.tool_radius, 1.0, round.air), 0.06);
 }
 
 TEST(ClearingPaths, RandomRegionsAreSound) {

@@ -113,7 +113,8 @@ double zigzagInset(double stepover, double radius);
 // failing all, a plunge counted in plunges_into_stock), stopping where it reaches z and feeding back to the start.
 // Then, if asked, each ring of
 // `centre` (perimeter at least min_segment), nearest first, followed once at z from its vertex nearest the tool:
-// joined by a feed where the straight way lies in `centre`, else entered by a ramp round the ring itself, the lap
+// joined by a feed where the straight way lies in `centre`, else entered from the side as a pass is, else by a ramp
+// round the ring itself, the lap
 // then running from where the ramp reached z back to there. The edges of a ring that lie in `air` are not followed
 // (the tool's disc meets no stock there): the rest of it is cut as open stretches in the ring's direction, each from
 // an air vertex (a plunge). With the contour pass every point of `centre` lies within stepover/2 + zigzagInset

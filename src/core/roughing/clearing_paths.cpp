@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <utility>
 
 #include "path_writer.h"
@@ -300,9 +301,10 @@ std::size_t nextPiece(const std::vector<PieceZigzag>& pieces, const std::vector<
   return best;
 }
 
-// The unused pass with the cheapest start, turned to start there (startCost), its side entry put in front.
+// The unused pass with the cheapest start, turned to start there (startCost); in front of it its side entry, unless
+// the tool gets there along the level.
 Polyline nextPass(std::vector<Polyline>& passes, std::vector<bool>& used, const std::vector<PassEnds>& ends,
-                  const PathWriter& writer) {
+                  const PathWriter& writer, bool stay_down) {
   std::size_t best = passes.size();
   std::pair<double, bool> best_cost{std::numeric_limits<double>::infinity(), false};
   for (std::size_t k = 0; k < passes.size(); ++k) {
@@ -314,7 +316,8 @@ Polyline nextPass(std::vector<Polyline>& passes, std::vector<bool>& used, const 
   Polyline pass = std::move(passes[best]);
   if (best_cost.second) std::reverse(pass.begin(), pass.end());
   const PassEnd& start = best_cost.second ? ends[best].second : ends[best].first;
-  if (start.side) pass.insert(pass.begin(), *start.side);
+  if (start.side && !writer.linksAlongLevel(pass.front(), stay_down, writer.entrySeconds(false)))
+    pass.insert(pass.begin(), *start.side);
   return pass;
 }
 
@@ -342,7 +345,7 @@ void cutZigzag(const std::vector<RegionPiece>& pieces, const ClearingLevel& leve
     done[i] = true;
     std::vector<bool> used(zigzags[i].passes.size(), false);
     for (std::size_t n = 0; n < zigzags[i].passes.size(); ++n) {
-      const Polyline pass = nextPass(zigzags[i].passes, used, zigzags[i].ends, writer);
+      const Polyline pass = nextPass(zigzags[i].passes, used, zigzags[i].ends, writer, options.stay_down);
       if (!writer.linkTo(pass.front(), options.stay_down, writer.entrySeconds(pass.front()))) writer.enterPass(pass);
       for (const Point2& p : pass) writer.feed(p);
       ++stats.passes;
@@ -412,7 +415,8 @@ std::pair<std::size_t, double> nearestStart(const RingStretch& stretch, const Po
 }
 
 // Every ring followed once at the level, nearest first, but where it lies in air; joined by a feed where the straight
-// way is inside the region.
+// way is inside the region; a closed ring entered from the side where it can be (PathWriter::sideEntry), else by a
+// ramp round it.
 void cutContours(const std::vector<RegionPiece>& pieces, const ClearingLevel& level, const ClearingOptions& options,
                  PathWriter& writer, ClearingStats& stats) {
   const RegionLocator in_air(level.air);
@@ -442,7 +446,16 @@ void cutContours(const std::vector<RegionPiece>& pieces, const ClearingLevel& le
     }
     std::rotate(path.begin(), path.begin() + start, path.end());
     std::pair<std::size_t, Point2> lap{path.size() - 1, path.front()};
-    if (!writer.linkTo(path.front(), true, writer.entrySeconds(path.front()))) lap = writer.enterRing(path);
+    const double entry_s = writer.entrySeconds(path.front());
+    const std::optional<Point2> side = in_air.contains(path.front()) || writer.linksAlongLevel(path.front(), true, entry_s)
+                                           ? std::nullopt
+                                           : writer.sideEntry(path.front());
+    if (side) {
+      if (!writer.linkTo(*side, true, writer.entrySeconds(true))) writer.enterPass({*side, path.front()});
+      writer.feed(path.front());
+    } else if (!writer.linkTo(path.front(), true, entry_s)) {
+      lap = writer.enterRing(path);
+    }
     // Once round at the level, from where the tool reached it back to there.
     for (std::size_t k = 1; k <= path.size(); ++k) writer.feed(path[(lap.first + k) % path.size()]);
     writer.feed(lap.second);

@@ -84,37 +84,20 @@ class PathWriter {
       descend(start, options_.clearance_z);
       return false;
     }
-    const Point2 from = at();
-    const bool inside = (may_feed || options_.stay_down) && segmentInside(level_.centre, from, start);
-    const bool feed_inside =
-        may_feed && inside && (&feed_region == &level_.centre || segmentInside(feed_region, from, start));
-    if (!options_.stay_down) {
-      if (feed_inside && atLevel()) {
-        feed(start);
-        return true;
-      }
-      moveAbove(start, options_.clearance_z);
-      return false;
-    }
-    const double run = (start - from).norm(), z = position().z();
-    const double hop = std::max(hopHeight(from, start, inside), z);
-    const double hop_s = 60 * ((hop - z) + run + (hop - safe_z_)) / rapid_ + entry_s;
-    if (feed_inside && atLevel() && 60 * run / feed_ <= hop_s) {
-      feed(start);
-      ++stats_.level_links;
+    const Link link = planLink(start, may_feed, entry_s, feed_region);
+    if (!link.way.empty()) {
+      for (const Point2& p : link.way) feed(p);
+      if (options_.stay_down) ++stats_.level_links;
       return true;
     }
-    if (may_feed && !inside && atLevel() && &feed_region == &level_.centre) {
-      const Polyline way = roundOneRing(from, start);
-      if (!way.empty() && 60 * pathLength(way) / feed_ <= hop_s) {
-        for (std::size_t i = 1; i < way.size(); ++i) feed(way[i]);
-        ++stats_.level_links;
-        return true;
-      }
-    }
-    if (hop < options_.clearance_z) ++stats_.hops;
-    moveAbove(start, hop);
+    if (link.hop < options_.clearance_z) ++stats_.hops;
+    moveAbove(start, link.hop);
     return false;
+  }
+
+  // Whether linkTo(start, may_feed, entry_s) would reach `start` along the level.
+  bool linksAlongLevel(const Point2& start, bool may_feed, double entry_s) const {
+    return placed() && !planLink(start, may_feed, entry_s, level_.centre).way.empty();
   }
 
   // Seconds to reach the level from the safe height at `start`: a plunge in air, else a ramp forth and back.
@@ -201,6 +184,32 @@ class PathWriter {
 
  private:
   Eigen::Vector3d position() const { return moves_.empty() ? *tool_ : moves_.back().tip; }
+
+  // How linkTo reaches `start` from where the tool is: the feeds along the level (ending at `start`), or none and
+  // the height of the hop over (the clearance plane without stay_down).
+  struct Link {
+    Polyline way;
+    double hop = 0;
+  };
+  Link planLink(const Point2& start, bool may_feed, double entry_s, const Region& feed_region) const {
+    const Point2 from = at();
+    const bool inside = (may_feed || options_.stay_down) && segmentInside(level_.centre, from, start);
+    const bool feed_inside =
+        may_feed && inside && (&feed_region == &level_.centre || segmentInside(feed_region, from, start));
+    if (!options_.stay_down) {
+      if (feed_inside && atLevel()) return {{start}, 0};
+      return {{}, options_.clearance_z};
+    }
+    const double run = (start - from).norm(), z = position().z();
+    const double hop = std::max(hopHeight(from, start, inside), z);
+    const double hop_s = 60 * ((hop - z) + run + (hop - safe_z_)) / rapid_ + entry_s;
+    if (feed_inside && atLevel() && 60 * run / feed_ <= hop_s) return {{start}, hop};
+    if (may_feed && !inside && atLevel() && &feed_region == &level_.centre) {
+      Polyline way = roundOneRing(from, start);
+      if (!way.empty() && 60 * pathLength(way) / feed_ <= hop_s) return {Polyline(way.begin() + 1, way.end()), hop};
+    }
+    return {{}, hop};
+  }
 
   // Up to `height`, over to above `start`, straight down to the safe height above the slab.
   void moveAbove(const Point2& start, double height) {
