@@ -111,15 +111,14 @@ double zigzagInset(double stepover, double radius);
 // zigzagInset inside the rings, no longer reaches the air band round open stock); elsewhere by a ramp at
 // ramp_angle_deg forth and back along its first interval (or its first 0.5 mm, or a short segment in `centre`;
 // failing all, a plunge counted in plunges_into_stock), stopping where it reaches z and feeding back to the start.
-// Then, if asked, each ring of
-// `centre` (perimeter at least min_segment), nearest first, followed once at z from its vertex nearest the tool:
-// joined by a feed where the straight way lies in `centre`, else entered from the side as a pass is, else by a ramp
-// round the ring itself, the lap
-// then running from where the ramp reached z back to there. The edges of a ring that lie in `air` are not followed
-// (the tool's disc meets no stock there): the rest of it is cut as open stretches in the ring's direction, each from
-// an air vertex (a plunge). With the contour pass every point of `centre` lies within stepover/2 + zigzagInset
-// (+ min_segment) of a feed at z or of a ring edge in air, and every point of stock within the tool radius of
-// `centre` is swept (ClearedLevel says why): a point within r of a ring edge in air is no stock.
+// Then, if asked, each ring of `centre` (perimeter at least min_segment), nearest first, followed once at z from its
+// vertex nearest the tool: joined by a feed where the straight way lies in `centre`, else entered from the side as a
+// pass is, else by a ramp round the ring itself, the lap then running from where the ramp reached z back to there.
+// The edges of a ring that lie in `air` are not followed (the tool's disc meets no stock there): the rest of it is cut
+// as open stretches in the ring's direction, each from an air vertex (a plunge). With the contour pass every point of
+// `centre` lies within stepover/2 + zigzagInset (+ min_segment) of a feed at z or of a ring edge in air, and every
+// point of stock within the tool radius of `centre` is swept (ClearedLevel says why): a point within r of a ring edge
+// in air is no stock.
 // Pieces are taken, and a piece's passes, cheapest start first: from either end, by the seconds of a straight rapid
 // from the tool and of the entry there (a plunge in air is quicker than a ramp), each reached as `stay_down` says.
 // Without stay_down the first point is a rapid at the clearance plane, the last a retract to it and sideways rapids are

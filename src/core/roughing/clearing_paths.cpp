@@ -447,9 +447,8 @@ void cutContours(const std::vector<RegionPiece>& pieces, const ClearingLevel& le
     std::rotate(path.begin(), path.begin() + start, path.end());
     std::pair<std::size_t, Point2> lap{path.size() - 1, path.front()};
     const double entry_s = writer.entrySeconds(path.front());
-    const std::optional<Point2> side = in_air.contains(path.front()) || writer.linksAlongLevel(path.front(), true, entry_s)
-                                           ? std::nullopt
-                                           : writer.sideEntry(path.front());
+    const bool straight = in_air.contains(path.front()) || writer.linksAlongLevel(path.front(), true, entry_s);
+    const std::optional<Point2> side = straight ? std::nullopt : writer.sideEntry(path.front());
     if (side) {
       if (!writer.linkTo(*side, true, writer.entrySeconds(true))) writer.enterPass({*side, path.front()});
       writer.feed(path.front());

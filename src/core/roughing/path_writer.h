@@ -205,7 +205,7 @@ class PathWriter {
     const double hop_s = 60 * ((hop - z) + run + (hop - safe_z_)) / rapid_ + entry_s;
     if (feed_inside && atLevel() && 60 * run / feed_ <= hop_s) return {{start}, hop};
     if (may_feed && !inside && atLevel() && &feed_region == &level_.centre) {
-      Polyline way = roundOneRing(from, start);
+      const Polyline way = roundOneRing(from, start);
       if (!way.empty() && 60 * pathLength(way) / feed_ <= hop_s) return {Polyline(way.begin() + 1, way.end()), hop};
     }
     return {{}, hop};
