@@ -63,30 +63,43 @@ double distanceToSegment(const Point2& p, const Segment& s) {
   return (s.a + t * d - p).norm();
 }
 
-// The largest distance from a point of a `grid` mm lattice in the region to the nearest feed at the level, or to an
-// edge of the region's rings lying in `air` (where the contour pass has nothing to cut: clearing_paths.h).
-double worstCoverage(const Region& centre, const std::vector<ClearingPoint>& moves, double z, double grid = 0.5,
-                     const Region& air = {}) {
-  std::vector<Segment> feeds = feedsAtLevel(moves, z);
+// The feeds at the level, and the edges of the region's rings lying in `air` (where the contour pass has nothing to
+// cut: clearing_paths.h).
+std::vector<Segment> feedsAndAirEdges(const Region& centre, const std::vector<ClearingPoint>& moves, double z,
+                                      const Region& air) {
+  std::vector<Segment> cuts = feedsAtLevel(moves, z);
   if (!regionEmpty(air))
     for (const Ring& ring : regionRings(centre))
       for (std::size_t i = 0; i < ring.size(); ++i) {
         const Point2& next = ring[(i + 1) % ring.size()];
-        if (segmentInside(air, ring[i], next)) feeds.push_back({ring[i], next});
+        if (segmentInside(air, ring[i], next)) cuts.push_back({ring[i], next});
       }
+  return cuts;
+}
+
+// The largest distance from a point of a `grid` mm lattice in `region` to the nearest of `cuts` (0 when none lies in
+// the region).
+double farthestFromCuts(const Region& region, const std::vector<Segment>& cuts, double grid) {
   Point2 lo(1e9, 1e9), hi(-1e9, -1e9);
-  for (const Ring& ring : regionRings(centre))
+  for (const Ring& ring : regionRings(region))
     for (const Point2& p : ring) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   double worst = 0;
   for (double x = std::floor(lo.x()); x <= hi.x(); x += grid)
     for (double y = std::floor(lo.y()); y <= hi.y(); y += grid) {
       const Point2 p(x, y);
-      if (!regionContains(centre, p)) continue;
+      if (!regionContains(region, p)) continue;
       double best = 1e9;
-      for (const Segment& s : feeds) best = std::min(best, distanceToSegment(p, s));
+      for (const Segment& s : cuts) best = std::min(best, distanceToSegment(p, s));
       worst = std::max(worst, best);
     }
   return worst;
+}
+
+// The largest distance from a point of a `grid` mm lattice in the region to the nearest feed at the level, or to an
+// edge of the region's rings lying in `air`.
+double worstCoverage(const Region& centre, const std::vector<ClearingPoint>& moves, double z, double grid = 0.5,
+                     const Region& air = {}) {
+  return farthestFromCuts(centre, feedsAndAirEdges(centre, moves, z, air), grid);
 }
 
 // The largest distance, less the cutter radius r, from a point of a `grid` mm lattice within r of the region (the
@@ -94,26 +107,7 @@ double worstCoverage(const Region& centre, const std::vector<ClearingPoint>& mov
 // lies within r of one): at most 0 (to within the lattice) when the cutter sweeps all of it.
 double worstSweep(const Region& centre, const std::vector<ClearingPoint>& moves, double z, double r,
                   double grid = 0.5, const Region& air = {}) {
-  std::vector<Segment> feeds = feedsAtLevel(moves, z);
-  for (const Ring& ring : regionRings(centre))
-    for (std::size_t i = 0; i < ring.size(); ++i) {
-      const Point2& next = ring[(i + 1) % ring.size()];
-      if (segmentInside(air, ring[i], next)) feeds.push_back({ring[i], next});
-    }
-  const Region reach = offsetRegion(centre, r);
-  Point2 lo(1e9, 1e9), hi(-1e9, -1e9);
-  for (const Ring& ring : regionRings(reach))
-    for (const Point2& p : ring) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-  double worst = -r;
-  for (double x = std::floor(lo.x()); x <= hi.x(); x += grid)
-    for (double y = std::floor(lo.y()); y <= hi.y(); y += grid) {
-      const Point2 p(x, y);
-      if (!regionContains(reach, p)) continue;
-      double best = 1e9;
-      for (const Segment& s : feeds) best = std::min(best, distanceToSegment(p, s));
-      worst = std::max(worst, best - r);
-    }
-  return worst;
+  return farthestFromCuts(offsetRegion(centre, r), feedsAndAirEdges(centre, moves, z, air), grid) - r;
 }
 
 int upwardRetracts(const std::vector<ClearingPoint>& moves, double clearance_z) {
