@@ -456,8 +456,8 @@ struct ToolChoice {
 };
 
 ToolChoice nextTool(const ShadowStack& shadows, const PlanarGroup& group, const GroupGeometry& g,
-                     const std::vector<const Tool*>& tools, const Tool* previous, const std::vector<const Tool*>& used,
-                     const FinishingOptions& options) {
+                    const std::vector<const Tool*>& tools, const Tool* previous, const std::vector<const Tool*>& used,
+                    const FinishingOptions& options) {
   std::vector<const Tool*> candidates;
   for (const Tool* t : tools) {
     if (std::find(used.begin(), used.end(), t) != used.end()) continue;
