@@ -131,8 +131,7 @@ namespace {
 
 // The pieces in the order PieceSchedule hands them out, the tool ending each piece at the first vertex of its outer
 // ring.
-std::vector<LevelPiece> scheduledOrder(const std::vector<ClearingLevel>& levels, double reach) {
-  PieceSchedule schedule(levels, reach);
+std::vector<LevelPiece> scheduledOrder(PieceSchedule schedule) {
   std::vector<LevelPiece> order;
   std::optional<Point2> at;
   for (std::size_t k = schedule.next(at); k < schedule.pieces().size(); k = schedule.next(at)) {
@@ -141,13 +140,23 @@ std::vector<LevelPiece> scheduledOrder(const std::vector<ClearingLevel>& levels,
   }
   return order;
 }
+std::vector<LevelPiece> scheduledOrder(const std::vector<ClearingLevel>& levels, double reach) {
+  return scheduledOrder(PieceSchedule(levels, reach));
+}
 
 }  // namespace
 
 // Operations cut piece after piece (operation_moves.h): that order is sound only if every piece comes after each
 // piece above it within the reach. Checked on random levels of boxes against Clipper: every piece of every level is
-// cut once, and a piece whose region grown by the reach meets a piece below it comes first.
-TEST(PieceOrder, APieceComesAfterEveryPieceAboveItWithinTheReach) {
+// cut once, and a piece whose region grown by the reach meets a piece below it comes first. One reach for every pair
+// of levels, or (as roughing's body, wider up the tool) a reach growing with the levels between.
+class PieceOrderReach : public testing::TestWithParam<bool> {};  // true: a reach per pair of levels
+
+TEST_P(PieceOrderReach, APieceComesAfterEveryPieceAboveItWithinTheReach) {
+  const bool per_pair = GetParam();
+  const LevelReach by_levels = [](std::size_t shallower, std::size_t deeper) {
+    return 8.0 + 6.0 * static_cast<double>(deeper - shallower);
+  };
   std::mt19937 random(3);
   std::uniform_real_distribution<double> unit(0, 1);
   int near_pairs = 0;
@@ -162,8 +171,9 @@ TEST(PieceOrder, APieceComesAfterEveryPieceAboveItWithinTheReach) {
       }
       level.centre = region(boxes);
     }
-    const double reach = 20;
-    const std::vector<LevelPiece> order = scheduledOrder(levels, reach);
+    const double reach = 20;  // one reach; per pair, by_levels (14 to 26 mm over these four levels)
+    const std::vector<LevelPiece> order =
+        per_pair ? scheduledOrder(PieceSchedule(levels, 26, by_levels)) : scheduledOrder(levels, reach);
     for (std::size_t i = 0; i < levels.size(); ++i) {
       double area = 0;
       for (const LevelPiece& piece : order)
@@ -173,13 +183,17 @@ TEST(PieceOrder, APieceComesAfterEveryPieceAboveItWithinTheReach) {
     for (std::size_t a = 0; a < order.size(); ++a)
       for (std::size_t b = 0; b < order.size(); ++b)
         if (order[a].level < order[b].level &&
-            !regionEmpty(intersect(offsetRegion(order[a].rings, reach), order[b].rings))) {
+            !regionEmpty(intersect(
+                offsetRegion(order[a].rings, per_pair ? by_levels(order[a].level, order[b].level) : reach),
+                order[b].rings))) {
           ++near_pairs;
           EXPECT_LT(a, b) << "a piece cut before one above it within the reach";
         }
   }
   EXPECT_GT(near_pairs, 10);
 }
+
+INSTANTIATE_TEST_SUITE_P(OneOrPerPair, PieceOrderReach, testing::Bool());
 
 // Two pockets under one top level: the tool finishes one pocket, level by level, before it crosses to the other.
 TEST(PieceOrder, APocketIsFinishedBeforeTheToolCrossesToTheNext) {

@@ -1,5 +1,6 @@
 // Work at depths handed out one item at a time, in an order a cutter can take it down a pocket: an item is ready
-// once every shallower item whose x-y box lies within `reach` of its box has been handed out; among the ready items,
+// once every shallower item whose x-y box lies within `reach` of its box has been handed out (a reach the same for
+// every pair, or given per pair); among the ready items,
 // the one nearest the tool by the caller's distance. Roughing's level pieces (PieceSchedule, operation_moves.h) and
 // planar finishing's wall stretches (cutWalls, finishing_moves.h) are scheduled by it.
 // Why: what a cut above leaves within the reach of a cut below is what the cut below was planned for only once the
@@ -22,10 +23,18 @@ struct ScheduledItem {
   Eigen::Vector2d lo, hi;  // the item's x-y box (lo <= hi)
 };
 
+// How far apart the boxes of a shallower item and a deeper one may lie for the deeper one to wait (a body widening
+// up the tool reaches farther round items far above it).
+using ScheduleReach = std::function<double(const ScheduledItem& shallower, const ScheduledItem& deeper)>;
+
 class TopDownSchedule {
  public:
   TopDownSchedule(std::vector<ScheduledItem> items, double reach);
+  // With the reach given per pair, never more than `most_reach`.
+  TopDownSchedule(std::vector<ScheduledItem> items, double most_reach, const ScheduleReach& reach);
   std::size_t size() const { return items_.size(); }
+  // Per item: the shallower items within reach, which it waits for (whatever has been taken).
+  std::vector<std::vector<std::size_t>> waitsFor() const;
 
   // The first ready item in the given order, now taken; size() once every item is taken.
   std::size_t first();

@@ -7,7 +7,11 @@
 namespace art2part {
 
 TopDownSchedule::TopDownSchedule(std::vector<ScheduledItem> items, double reach)
+    : TopDownSchedule(std::move(items), reach, [reach](const ScheduledItem&, const ScheduledItem&) { return reach; }) {}
+
+TopDownSchedule::TopDownSchedule(std::vector<ScheduledItem> items, double most_reach, const ScheduleReach& pair_reach)
     : items_(std::move(items)), waiting_(items_.size(), 0), unblocks_(items_.size()), taken_(items_.size(), false) {
+  const double reach = most_reach;
   std::vector<std::size_t> by_x(items_.size());
   std::iota(by_x.begin(), by_x.end(), std::size_t{0});
   std::sort(by_x.begin(), by_x.end(),
@@ -19,10 +23,20 @@ TopDownSchedule::TopDownSchedule(std::vector<ScheduledItem> items, double reach)
       const ScheduledItem& b = items_[by_x[j]];
       if (a.depth == b.depth || b.lo.y() > a.hi.y() + reach || a.lo.y() > b.hi.y() + reach) continue;
       const std::size_t upper = a.depth < b.depth ? by_x[i] : by_x[j], lower = a.depth < b.depth ? by_x[j] : by_x[i];
+      const double r = std::min(reach, pair_reach(items_[upper], items_[lower]));
+      if (b.lo.x() > a.hi.x() + r || a.lo.x() > b.hi.x() + r || b.lo.y() > a.hi.y() + r || a.lo.y() > b.hi.y() + r)
+        continue;
       unblocks_[upper].push_back(lower);
       ++waiting_[lower];
     }
   }
+}
+
+std::vector<std::vector<std::size_t>> TopDownSchedule::waitsFor() const {
+  std::vector<std::vector<std::size_t>> waits(items_.size());
+  for (std::size_t upper = 0; upper < unblocks_.size(); ++upper)
+    for (std::size_t lower : unblocks_[upper]) waits[lower].push_back(upper);
+  return waits;
 }
 
 void TopDownSchedule::take(std::size_t i) {
