@@ -416,8 +416,9 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
     if (!by_engagement) clear.stepover = slabStepover(tool, clearing.stepover, top - z);
     else clear.engagement_deg = slabEngagement(tool, top - z);
     clear.centre = centresReaching(target.reach, forbidden, shadows.at(z), r, allowance, op.direct_levels);
-    if (before && options.rest.least_target_mm2 > 0)  // only where its sweep meets stock it is to remove
-      clear.centre = piecesReaching(clear.centre, target.target, r - kClearedInsetMm, options.rest.least_target_mm2);
+    // Only pieces whose sweep meets stock to remove: a rest pass's, or the stock a later setup's model proves.
+    const double least_mm2 = before ? options.rest.least_target_mm2 : in_process ? options.stock.least_proven_mm2 : 0;
+    if (least_mm2 > 0) clear.centre = piecesReaching(clear.centre, target.target, r - kClearedInsetMm, least_mm2);
     // The levels below see the stock this one leaves (conservative: nesting only adds to its centre).
     Region cleared = offsetRegion(clear.centre, r - kClearedInsetMm);
     drafts_left.push_back(subtract(target.stock, cleared));
