@@ -17,9 +17,10 @@
 // first.
 //
 // The moves: the new stretches of each front, material on the tool's right (climb milling with the spindle turning
-// clockwise), going on round a front along the stretches that did not move (they lie on cleared ground) where that is
-// quicker than a hop; else a hop over the slab, a rapid down a column of cleared ground 0.05 mm inside it to the safe
-// height, a plunge and a short feed onto the front.
+// clockwise), the nearest first (a front that moved whole from its vertex nearest the tool), going on round a front
+// along the stretches that did not move (they lie on cleared ground) where that is quicker than a hop; else a hop over
+// the slab, a rapid down a column of cleared ground 0.05 mm inside it to the safe height, a plunge and a short feed
+// onto the front.
 //
 // The bound: a cutter of radius r on a path turning round material outside at radius rho, cutting a band a wide,
 // meets material over the angle theta with (rho + r - a)^2 = rho^2 + r^2 + 2 rho r cos(theta) (a straight path is

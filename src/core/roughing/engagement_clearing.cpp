@@ -1,6 +1,7 @@
 // Constant-engagement clearing: fronts grown from the cleared ground (engagement_clearing.h has the rule and the bound).
 #include "art2part/roughing/engagement_clearing.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -250,19 +251,22 @@ class FrontCutter {
     }
   }
 
-  // The stretch nearest the tool first, then on round its ring while the way along the old front between two
-  // stretches takes less time than a hop; each stretch not reached so is entered from the cleared ground.
-  void cutStretches(const std::vector<Stretch>& stretches, bool unbounded) {
+  // The stretch nearest the tool first (a closed one, a whole ring that moved, from its vertex nearest the tool),
+  // then on round its ring while the way along the old front between two stretches takes less time than a hop; each
+  // stretch not reached so is entered from the cleared ground.
+  void cutStretches(std::vector<Stretch> stretches, bool unbounded) {
     std::vector<bool> done(stretches.size(), false);
     std::size_t next = stretches.size();
     for (std::size_t n = 0; n < stretches.size(); ++n) {
       if (next == stretches.size()) {
         double nearest = std::numeric_limits<double>::infinity();
+        std::size_t start = 0;
         for (std::size_t i = 0; i < stretches.size(); ++i) {
           if (done[i]) continue;
-          const double d = writer_.placed() ? (stretches[i].path.front() - writer_.at()).squaredNorm() : 0;
-          if (d < nearest) next = i, nearest = d;
+          const auto [at, d] = nearestStart(stretches[i]);
+          if (d < nearest) next = i, start = at, nearest = d;
         }
+        if (start > 0) startClosedAt(stretches[next].path, start);
         enterAt(stretches[next].path.front());
       }
       done[next] = true;
@@ -276,6 +280,25 @@ class FrontCutter {
         next = stretch.next;
       }
     }
+  }
+
+  // Where to start `stretch` nearest the tool, and the squared distance: an open stretch at its first point (it
+  // leaves the old front there), a closed one at any of its vertices. (0, 0) before the first move.
+  std::pair<std::size_t, double> nearestStart(const Stretch& stretch) const {
+    if (!writer_.placed()) return {0, 0.0};
+    std::pair<std::size_t, double> best{0, (stretch.path.front() - writer_.at()).squaredNorm()};
+    if (!stretch.closed) return best;
+    for (std::size_t i = 1; i + 1 < stretch.path.size(); ++i)  // the last vertex repeats the first
+      if ((stretch.path[i] - writer_.at()).squaredNorm() < best.second)
+        best = {i, (stretch.path[i] - writer_.at()).squaredNorm()};
+    return best;
+  }
+
+  // A closed stretch (its last vertex repeats the first) turned to start and end at vertex `start`.
+  static void startClosedAt(Polyline& path, std::size_t start) {
+    path.pop_back();
+    std::rotate(path.begin(), path.begin() + static_cast<std::ptrdiff_t>(start), path.end());
+    path.push_back(path.front());
   }
 
   // Feeding along `gap` takes no longer than a hop over its ends (up over the slab, across, down).
