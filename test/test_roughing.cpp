@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <memory>
 
 #include "art2part/roughing/in_process_stock.h"
@@ -407,6 +408,35 @@ INSTANTIATE_TEST_SUITE_P(SharedParts, RoughingOnParts,
                          // take minutes each (bench_roughing).
                          ::testing::Values("featuretype.STEP", "ANC101.stp"));
 
+// A roughing plan's cutting where `counted` says (the feed of those operations) and the simulation's verdict on it;
+// the level cuts checked within the step-down on the way.
+struct CountedFeed {
+  double feed_mm = 0;
+  VerificationReport report;
+};
+CountedFeed plannedFeed(const Part& part, const SetupPlan& setups, const RoughingOptions& options,
+                        const std::function<bool(const RoughingOperation&)>& counted) {
+  const ToolLibrary library = loadToolLibrary(kTools);
+  const RoughingPlan roughing = planRoughing(part, setups, library, options);
+  CountedFeed out;
+  for (const RoughingOperation& op : roughing.operations)
+    if (counted(op)) out.feed_mm += op.feed_mm;
+  out.report = verifyRoughing(part, roughing, library);
+  expectLevelCutsWithinTheStepDown(roughing, out.report, library, options);
+  return out;
+}
+
+// A rule leaving pieces out (`ruled`) against every piece kept: clean by the simulation, under `feed_share` of the
+// counted feed, the simulation's removal within `removal_share` of it.
+void expectLessCutForTheSameRemoval(const CountedFeed& every_piece, const CountedFeed& ruled, double feed_share,
+                                    double removal_share, const char* otherwise) {
+  EXPECT_EQ(ruled.report.gouges, 0);
+  EXPECT_EQ(ruled.report.collisions, 0);
+  EXPECT_LT(ruled.feed_mm, feed_share * every_piece.feed_mm) << otherwise;
+  EXPECT_NEAR(ruled.report.removed_volume_mm3, every_piece.report.removed_volume_mm3,
+              removal_share * every_piece.report.removed_volume_mm3);
+}
+
 // Rest roughing only where material is (issue 19): rest passes leave out the pieces of their centre regions that would
 // cut air round stock the tool cannot reach. On featuretype they remove what they removed with every piece kept (the
 // simulation's volume within 0.05 %), cut less, and neither gouge nor collide. Every setup starts from the block here
@@ -415,32 +445,17 @@ INSTANTIATE_TEST_SUITE_P(SharedParts, RoughingOnParts,
 // 10,448 mm of feed before that; 9,372 -> 9,181 after), and the rule's own effect is seen on stock it cannot reach.
 TEST(Roughing, RestPassesCutOnlyWhereTheirStockIs) {
   const auto& [part, setups] = featuretype();
-  const ToolLibrary library = loadToolLibrary(kTools);
-  struct Outcome {
-    double rest_feed_mm = 0;
-    VerificationReport report;
-  };
   auto plan = [&](double least_target_mm2) {
     RoughingOptions options;
     options.rest.least_target_mm2 = least_target_mm2;
     options.stock.in_process = false;
-    const RoughingPlan roughing = planRoughing(part, setups, library, options);
-    Outcome out;
-    for (const RoughingOperation& op : roughing.operations)
-      if (op.kind == "rest roughing") out.rest_feed_mm += op.feed_mm;
-    out.report = verifyRoughing(part, roughing, library);
-    expectLevelCutsWithinTheStepDown(roughing, out.report, library, options);
-    return out;
+    return plannedFeed(part, setups, options, [](const RoughingOperation& op) { return op.kind == "rest roughing"; });
   };
-  const Outcome every_piece = plan(0), reaching = plan(RoughingOptions().rest.least_target_mm2);
+  const CountedFeed every_piece = plan(0), reaching = plan(RoughingOptions().rest.least_target_mm2);
   std::printf("rest passes: %.0f mm of feed with every piece, %.0f mm where their stock is; removed %.0f / %.0f mm3\n",
-              every_piece.rest_feed_mm, reaching.rest_feed_mm, every_piece.report.removed_volume_mm3,
+              every_piece.feed_mm, reaching.feed_mm, every_piece.report.removed_volume_mm3,
               reaching.report.removed_volume_mm3);
-  EXPECT_EQ(reaching.report.gouges, 0);
-  EXPECT_EQ(reaching.report.collisions, 0);
-  EXPECT_LT(reaching.rest_feed_mm, 0.95 * every_piece.rest_feed_mm) << "the air round unreachable stock is not cut";
-  EXPECT_NEAR(reaching.report.removed_volume_mm3, every_piece.report.removed_volume_mm3,
-              5e-4 * every_piece.report.removed_volume_mm3);
+  expectLessCutForTheSameRemoval(every_piece, reaching, 0.95, 5e-4, "the air round unreachable stock is cut");
 }
 
 // A later setup's main pass over the in-process stock leaves out the pieces of its centre regions whose sweep misses
@@ -451,31 +466,18 @@ TEST(Roughing, ALaterSetupsMainPassCutsOnlyWhereProvenStockIs) {
   const Part& part = featuretype().part;
   // The plan's setups (visibility at its default level): the third one's main pass meets the slivers.
   const SetupPlan setups = planSetups(part, analyseVisibility(part, VisibilityOptions()));
-  const ToolLibrary library = loadToolLibrary(kTools);
-  struct Outcome {
-    double later_main_feed_mm = 0;
-    VerificationReport report;
-  };
   auto plan = [&](double least_proven_mm2) {
     RoughingOptions options;
     options.stock.least_proven_mm2 = least_proven_mm2;
-    const RoughingPlan roughing = planRoughing(part, setups, library, options);
-    Outcome out;
-    for (const RoughingOperation& op : roughing.operations)
-      if (op.setup > 0 && op.kind == "roughing") out.later_main_feed_mm += op.feed_mm;
-    out.report = verifyRoughing(part, roughing, library);
-    return out;
+    return plannedFeed(part, setups, options,
+                       [](const RoughingOperation& op) { return op.setup > 0 && op.kind == "roughing"; });
   };
-  const Outcome every_piece = plan(0), reaching = plan(RoughingOptions().stock.least_proven_mm2);
+  const CountedFeed every_piece = plan(0), reaching = plan(RoughingOptions().stock.least_proven_mm2);
   std::printf("later setups' main passes: %.0f mm of feed with every piece, %.0f mm where proven stock is; removed "
               "%.0f / %.0f mm3\n",
-              every_piece.later_main_feed_mm, reaching.later_main_feed_mm, every_piece.report.removed_volume_mm3,
+              every_piece.feed_mm, reaching.feed_mm, every_piece.report.removed_volume_mm3,
               reaching.report.removed_volume_mm3);
-  EXPECT_EQ(reaching.report.gouges, 0);
-  EXPECT_EQ(reaching.report.collisions, 0);
-  EXPECT_LT(reaching.later_main_feed_mm, 0.8 * every_piece.later_main_feed_mm) << "slivers missing the stock are cut";
-  EXPECT_NEAR(reaching.report.removed_volume_mm3, every_piece.report.removed_volume_mm3,
-              1e-3 * every_piece.report.removed_volume_mm3);
+  expectLessCutForTheSameRemoval(every_piece, reaching, 0.8, 1e-3, "slivers missing the stock are cut");
 }
 
 // A square pyramid, its base 2 x `half` wide at z = 0 round (cx, cy), its apex `height` over the centre, turned by
