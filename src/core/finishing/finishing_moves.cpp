@@ -1,6 +1,7 @@
 // Moves of the 2.5-D finishing passes (finishing_moves.h).
 #include "finishing_moves.h"
 
+#include "art2part/geometry/ordered_tour.h"
 #include "art2part/geometry/top_down_schedule.h"
 
 namespace art2part::finishing_detail {
@@ -73,11 +74,25 @@ void cutWalls(const std::vector<WallStretch>& walls, double lead, double reach, 
     items.push_back(item);
   }
   TopDownSchedule schedule(std::move(items), 2 * reach);  // boxes grown by the reach each meet
-  auto distance = [&walls, &out](std::size_t i) {
-    return (walls[i].stretch.points.front() - out.at().head<2>()).norm() + std::abs(walls[i].z - out.at().z());
+  // Each stretch is entered at its first point and left at its last (its start, closed), whatever the order.
+  std::vector<TourStop> stops;
+  stops.reserve(walls.size());
+  for (const WallStretch& w : walls) {
+    const Point2& first = w.stretch.points.front();
+    const Point2& last = w.stretch.closed ? first : w.stretch.points.back();
+    stops.push_back({Vec3(first.x(), first.y(), w.z), Vec3(last.x(), last.y(), w.z)});
+  }
+  Vec3 at = out.at();
+  auto distance = [&stops, &at](std::size_t i) {
+    return (stops[i].entry.head<2>() - at.head<2>()).norm() + std::abs(stops[i].entry.z() - at.z());
   };
-  for (std::size_t i = schedule.next(out.at().head<2>(), distance); i < walls.size();
-       i = schedule.next(out.at().head<2>(), distance)) {
+  std::vector<std::size_t> order;
+  for (std::size_t i = schedule.next(at.head<2>(), distance); i < walls.size();
+       i = schedule.next(at.head<2>(), distance)) {
+    order.push_back(i);
+    at = stops[i].exit;
+  }
+  for (std::size_t i : shortenedOrder(stops, std::move(order), schedule.waitsFor())) {
     const WallStretch& w = walls[i];
     cutStretch(w.stretch, w.z, w.top, lead, *w.allowed, *w.safe, limit, out);
   }

@@ -213,8 +213,9 @@ struct WallStretch {
 };
 // Cuts the stretches nearest first (x-y distance from the tool to a stretch's start plus the height between), each only
 // once every stretch at a higher level over it is cut (their boxes, grown by `reach`, meet; TopDownSchedule): down one
-// wall band by band before crossing to the next. Why: level after level, the tool crossed the part between walls at
-// every level.
+// wall band by band before crossing to the next; that order then shortened by or-opt under the same rule
+// (ordered_tour.h: each stretch is entered and left at its ends whatever the order). Why: level after level, the tool
+// crossed the part between walls at every level.
 void cutWalls(const std::vector<WallStretch>& walls, double lead, double reach, const DescentLimit& limit,
               PathWriter& out);
 
