@@ -6,11 +6,12 @@
 // under the same rule (ordered_tour.h, each piece entered and left where the nearest-first cut did); the pieces are
 // cut again in that order, and the quicker of the two cuts is kept (a piece is entered from where the tool is, so the
 // shortened travel is a model). Without stay-down links, level after level.
-// Why the piece order is sound: the regions were planned for the whole level order, and a piece is cut only after
-// every piece above it whose box lies within the reach of the tool's body up to that piece's slab top, plus the
-// cutter's radius, of its own (the stock such a piece removes lies within a cutter radius of it, and no wider part of
-// the body meets its slab): what is left above when it is cut, within the body's reach, is what the plan left. Pieces below it, cut before or not, only take stock away. Links are proven from the
-// slabs as they stand: their final stock plus the pieces still to come grown by the cutter's radius.
+// Why the piece order is sound: the regions were planned for the whole level order, and a piece is cut only after every
+// piece above it whose box lies within the reach of the tool's body up to that piece's slab top, plus the cutter's
+// radius, of its own (the stock such a piece removes lies within a cutter radius of it, and no wider part of the body
+// meets its slab): what is left above when it is cut, within the body's reach, is what the plan left. Pieces below it,
+// cut before or not, only take stock away. Links are proven from the slabs as they stand: their final stock plus the
+// pieces still to come grown by the cutter's radius.
 #pragma once
 
 #include <functional>

@@ -72,13 +72,11 @@ class TourShortener {
     for (std::size_t g = lo; g < i; ++g) weigh(g);
     for (std::size_t g = end + 1; g <= hi; ++g) weigh(g);
     if (best_gap == kNone) return false;
-    if (best_gap < i) {
-      std::rotate(order_.begin() + static_cast<std::ptrdiff_t>(best_gap), order_.begin() + static_cast<std::ptrdiff_t>(i),
-                  order_.begin() + static_cast<std::ptrdiff_t>(end));
-    } else {
-      std::rotate(order_.begin() + static_cast<std::ptrdiff_t>(i), order_.begin() + static_cast<std::ptrdiff_t>(end),
-                  order_.begin() + static_cast<std::ptrdiff_t>(best_gap));
-    }
+    const auto it = [this](std::size_t k) { return order_.begin() + static_cast<std::ptrdiff_t>(k); };
+    if (best_gap < i)
+      std::rotate(it(best_gap), it(i), it(end));
+    else
+      std::rotate(it(i), it(end), it(best_gap));
     place();
     return true;
   }
@@ -96,7 +94,8 @@ void checkOrder(std::size_t stops, const std::vector<std::size_t>& order,
   if (order.size() != stops) throw std::invalid_argument("shortenedOrder: the order is not a permutation of the stops");
   std::vector<bool> seen(stops, false);
   for (std::size_t s : order) {
-    if (s >= stops || seen[s]) throw std::invalid_argument("shortenedOrder: the order is not a permutation of the stops");
+    if (s >= stops || seen[s])
+      throw std::invalid_argument("shortenedOrder: the order is not a permutation of the stops");
     for (std::size_t w : waits_for[s])
       if (w >= stops || !seen[w]) throw std::invalid_argument("shortenedOrder: a stop comes before one it waits for");
     seen[s] = true;

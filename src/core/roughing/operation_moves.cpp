@@ -217,8 +217,8 @@ double movesSeconds(const std::vector<ClearingPoint>& moves, const ClearingOptio
 PiecePass pieceByPiece(const OperationLevels& levels, const Tool& tool, const OperationMovesOptions& options) {
   PieceSchedule schedule = pieceSchedule(levels, tool, options);
   const std::vector<LevelPiece>& pieces = schedule.pieces();
-  PiecePass nearest =
-      cutPieces(levels, tool, options, pieces, [&schedule](const std::optional<Point2>& at) { return schedule.next(at); });
+  PiecePass nearest = cutPieces(levels, tool, options, pieces,
+                                [&schedule](const std::optional<Point2>& at) { return schedule.next(at); });
   if (options.by_engagement || pieces.size() < 3) return nearest;
   const std::vector<std::size_t> order = shortenedOrder(nearest.stops, nearest.order, schedule.waitsFor());
   if (tourTravel(nearest.stops, order) >= tourTravel(nearest.stops, nearest.order) - kShorterTourMm) return nearest;
@@ -274,9 +274,10 @@ PieceSchedule::PieceSchedule(const std::vector<ClearingLevel>& levels, double re
 
 PieceSchedule::PieceSchedule(const std::vector<ClearingLevel>& levels, double most_reach, const LevelReach& reach)
     : pieces_(levelPieces(levels)),
-      schedule_(scheduledPieces(pieces_), most_reach, [&reach](const ScheduledItem& shallower, const ScheduledItem& deeper) {
-        return reach(static_cast<std::size_t>(shallower.depth), static_cast<std::size_t>(deeper.depth));
-      }) {}
+      schedule_(scheduledPieces(pieces_), most_reach,
+                [&reach](const ScheduledItem& shallower, const ScheduledItem& deeper) {
+                  return reach(static_cast<std::size_t>(shallower.depth), static_cast<std::size_t>(deeper.depth));
+                }) {}
 
 std::size_t PieceSchedule::next(const std::optional<Point2>& at) {
   if (!at) return schedule_.first();
