@@ -408,6 +408,32 @@ TEST(PlanarFinishing, WallsAreFinishedPocketByPocketTopDown) {
   expectNoGougeNorCollision(part, path, tools, stock.mesh, 0.2);
 }
 
+// Likewise the floors of the stepped pockets (each pocket's two): level after level the face mill crossed from one
+// pocket to the other at each level; now piece by piece, nearest first, each after the floors above it.
+TEST(PlanarFinishing, FloorsAreFacedPocketByPocketTopDown) {
+  const Part part = test::stepPart(steppedPockets(0), "stepped_pockets", fine());
+  const Part stock = test::stepPart(steppedPockets(kSkin), "stepped_pockets_stock", fine());
+  const ToolLibrary library = loadToolLibrary(kTools);
+  PlanarGroup group;
+  group.frame = setupFrame(part, Vec3::UnitZ());
+  group.stock = test::box(Vec3(-2, -2, -2), Vec3(122, 42, 32));
+  for (int f = 0; f < static_cast<int>(part.faces.size()); ++f) {
+    const Face& face = part.faces[f];
+    if (face.type == SurfaceType::Plane && face.normal.z() > 1 - 1e-9 && face.offset < 25)
+      group.targets.push_back({f, FinishingKind::FaceMill});
+  }
+  ASSERT_EQ(group.targets.size(), 4u) << "the upper and the lower floor of each pocket";
+  const PlanarResult result = finishPlanar(part, group, flatsLargestFirst(library), FinishingOptions{});
+  const auto [path, tools] = programOf(result.operations, library);
+  ASSERT_FALSE(path.empty());
+  int crossings = 0;
+  for (std::size_t i = 1; i < path.size(); ++i)
+    crossings += path[i].tool == path[i - 1].tool && (path[i].tip.x() > 60) != (path[i - 1].tip.x() > 60);
+  std::printf("%zu operations, %d crossings between the pockets\n", result.operations.size(), crossings);
+  EXPECT_LE(crossings, static_cast<int>(result.operations.size()));
+  expectNoGougeNorCollision(part, path, tools, stock.mesh, 0.2);
+}
+
 // A 100 x 60 x 80 block with a 40 x 40 pocket 70 deep, its top and the pocket's floor to face-mill: flat20's holder
 // stops it 60 mm down, so only flat20L reaches the floor. flat20 (1,150 mm/min) faces the top first and flat20L
 // (690 mm/min) follows for the floor alone: its feed time is under 85 % of flat20L doing both (71 % by the areas),

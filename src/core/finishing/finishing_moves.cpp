@@ -3,6 +3,7 @@
 
 #include "art2part/geometry/ordered_tour.h"
 #include "art2part/geometry/top_down_schedule.h"
+#include "art2part/roughing/operation_moves.h"
 
 namespace art2part::finishing_detail {
 
@@ -65,7 +66,7 @@ void cutStretch(const ContourStretch& s, double z, double top, double lead, cons
 }
 
 void cutWalls(const std::vector<WallStretch>& walls, double lead, double reach, const DescentLimit& limit,
-              PathWriter& out) {
+              double rapid_mm_min, PathWriter& out) {
   std::vector<ScheduledItem> items;
   items.reserve(walls.size());
   for (const WallStretch& w : walls) {
@@ -86,15 +87,43 @@ void cutWalls(const std::vector<WallStretch>& walls, double lead, double reach, 
   auto distance = [&stops, &at](std::size_t i) {
     return (stops[i].entry.head<2>() - at.head<2>()).norm() + std::abs(stops[i].entry.z() - at.z());
   };
-  std::vector<std::size_t> order;
+  std::vector<std::size_t> nearest;
   for (std::size_t i = schedule.next(at.head<2>(), distance); i < walls.size();
        i = schedule.next(at.head<2>(), distance)) {
-    order.push_back(i);
+    nearest.push_back(i);
     at = stops[i].exit;
   }
-  for (std::size_t i : shortenedOrder(stops, std::move(order), schedule.waitsFor())) {
-    const WallStretch& w = walls[i];
-    cutStretch(w.stretch, w.z, w.top, lead, *w.allowed, *w.safe, limit, out);
+  auto write = [&](const std::vector<std::size_t>& order, PathWriter& path) {
+    for (std::size_t i : order) {
+      const WallStretch& w = walls[i];
+      cutStretch(w.stretch, w.z, w.top, lead, *w.allowed, *w.safe, limit, path);
+    }
+  };
+  const std::vector<std::size_t> shortened = shortenedOrder(stops, nearest, schedule.waitsFor());
+  if (shortened == nearest) return write(nearest, out);
+  // The model counts straight travel; the links written (a hop at the height the stock proves clear, a feed down
+  // where no rapid may come) decide the time: the shortened order only where it is quicker as written.
+  PathWriter by_nearest = out, by_shortened = out;
+  write(nearest, by_nearest);
+  write(shortened, by_shortened);
+  by_nearest.retract(), by_shortened.retract();  // the order decides where the tool leaves from too
+  const bool quicker = by_shortened.seconds(rapid_mm_min) < by_nearest.seconds(rapid_mm_min);
+  write(quicker ? shortened : nearest, out);
+}
+
+void cutFloors(const std::vector<FloorLevel>& floors, const ClearingOptions& clearing, const DescentLimit& limit,
+               double reach, PathWriter& out) {
+  std::vector<ClearingLevel> levels;
+  levels.reserve(floors.size());
+  for (const FloorLevel& f : floors) levels.push_back(f.clear);
+  PieceSchedule schedule(levels, reach);
+  std::optional<Point2> at;
+  for (std::size_t i = schedule.next(at); i < schedule.pieces().size(); i = schedule.next(at)) {
+    const LevelPiece& piece = schedule.pieces()[i];
+    ClearingLevel level = levels[piece.level];
+    level.centre = piece.rings;
+    out.clearing(safeDescents(clearLevel(level, clearing), *floors[piece.level].safe, limit, 2 * clearing.tool_radius));
+    at = out.at().head<2>();
   }
 }
 

@@ -30,7 +30,7 @@ struct LinkWay {
 class PathWriter {
  public:
   PathWriter(const SetupFrame& frame, const Tool& tool, int setup, double clearance_z,
-             std::optional<LinkWay> link = std::nullopt)
+             std::shared_ptr<const LinkWay> link = nullptr)
       : frame_(frame), tool_(tool), setup_(setup), clearance_z_(clearance_z), link_(std::move(link)) {}
 
   void move(const Vec3& p, MoveKind kind) {
@@ -98,6 +98,18 @@ class PathWriter {
     return std::move(path_);
   }
   const Vec3& at() const { return at_; }
+  bool started() const { return started_; }
+  // Where the tool stands before this writer's first move (the end of another's): cuts are ordered from there. No
+  // move is written; the first still comes over the clearance plane.
+  void startAt(const Vec3& p) {
+    if (!started_) at_ = p;
+  }
+  // Seconds of the path so far as the plan estimates them (estimateTime): feeds at the tool's rate, rapids at
+  // `rapid_mm_min`.
+  double seconds(double rapid_mm_min) const {
+    return 60 * (toolpathLength(path_, MoveKind::Feed) / std::max(tool_.feed_mm_min, 1.0) +
+                 toolpathLength(path_, MoveKind::Rapid) / std::max(rapid_mm_min, 1.0));
+  }
 
  private:
   // The height to go across at from where the tool is to `to`, no lower than `lowest` nor than the tool: the lowest the
@@ -116,7 +128,7 @@ class PathWriter {
   const Tool& tool_;
   int setup_;
   double clearance_z_;
-  std::optional<LinkWay> link_;
+  std::shared_ptr<const LinkWay> link_;  // shared by the writers of one tool's passes (and their trial copies)
   Toolpath path_;
   Vec3 at_ = Vec3::Zero();
   bool started_ = false;
@@ -203,6 +215,19 @@ std::vector<ClearingPoint> safeDescents(const std::vector<ClearingPoint>& moves,
 void cutStretch(const ContourStretch& s, double z, double top, double lead, const Region& allowed,
                 const SafeDescent& safe, const DescentLimit& limit, PathWriter& out);
 
+// One level's floor clearing (its centre region, z and top), with the level's allowed region and safe descents.
+struct FloorLevel {
+  ClearingLevel clear;
+  std::shared_ptr<const Region> allowed;
+  std::shared_ptr<const SafeDescent> safe;  // over *allowed
+};
+// Clears the floors piece by piece (the connected pieces of every level's centre, PieceSchedule with the level index
+// as the depth), the piece nearest the tool first, each only once every piece of a level above within `reach` of it
+// is cut: the walls' rule (cutWalls). Each piece as clearLevel clears it, its descents moved by safeDescents.
+// Why: level after level, the face mill crossed the part between the floors at both ends at every level.
+void cutFloors(const std::vector<FloorLevel>& floors, const ClearingOptions& clearing, const DescentLimit& limit,
+               double reach, PathWriter& out);
+
 // A wall stretch to cut at one level (`top`: the level's allowance top), with the level's allowed region and safe
 // descents, which the level's stretches share.
 struct WallStretch {
@@ -214,9 +239,10 @@ struct WallStretch {
 // Cuts the stretches nearest first (x-y distance from the tool to a stretch's start plus the height between), each only
 // once every stretch at a higher level over it is cut (their boxes, grown by `reach`, meet; TopDownSchedule): down one
 // wall band by band before crossing to the next; that order then shortened by or-opt under the same rule
-// (ordered_tour.h: each stretch is entered and left at its ends whatever the order). Why: level after level, the tool
-// crossed the part between walls at every level.
+// (ordered_tour.h: each stretch is entered and left at its ends whatever the order), kept where the moves it writes
+// take less time (feed at the tool's rate, rapids at `rapid_mm_min`). Why: level after level, the tool crossed the
+// part between walls at every level.
 void cutWalls(const std::vector<WallStretch>& walls, double lead, double reach, const DescentLimit& limit,
-              PathWriter& out);
+              double rapid_mm_min, PathWriter& out);
 
 }  // namespace art2part::finishing_detail

@@ -294,11 +294,13 @@ ToolRun runTool(const PlanarGroup& group, GroupGeometry& g, const ShadowStack& s
   const double clearance_z = g.stock.max.z() + options.clearance;
   // Links between wall stretches and between floor passes stay down where the stock left proves the way clear (the
   // margin covers the skin the stock beyond it leaves out, and a clearance). Only for the paths: a trial writes none.
-  std::optional<LinkWay> link;
+  std::shared_ptr<const LinkWay> link;
   if (write_paths && !g.thick->empty()) {
-    link = LinkWay{LinkClearance(tool, options.allowance + kLinkClearance, LinkClearance::Beside::WholeTool),
-                   g.thick->back().z};
-    for (const SlabState& slab : *g.thick) link->clearance.addSlab(slab, {});
+    auto way = std::make_shared<LinkWay>(
+        LinkWay{LinkClearance(tool, options.allowance + kLinkClearance, LinkClearance::Beside::WholeTool),
+                g.thick->back().z});
+    for (const SlabState& slab : *g.thick) way->clearance.addSlab(slab, {});
+    link = std::move(way);
   }
   PathWriter floor_path(group.frame, tool, group.setup, clearance_z, link);
   PathWriter wall_path(group.frame, tool, group.setup, clearance_z, std::move(link));
@@ -311,6 +313,7 @@ ToolRun runTool(const PlanarGroup& group, GroupGeometry& g, const ShadowStack& s
   const double lead = std::min(r, 2.0) + options.allowance;
   const DescentLimit limit(*g.thick, r);
   std::vector<WallStretch> walls;  // every level's stretches, cut after the levels
+  std::vector<FloorLevel> floors;  // every level's floor clearing, cut after the levels
 
   for (const LevelWork& level : levels) {
     const double zq = level.z + kAbove;
@@ -330,13 +333,14 @@ ToolRun runTool(const PlanarGroup& group, GroupGeometry& g, const ShadowStack& s
       for (int f : level.floors) target = unite(target, g.floors[f].left);
       const Region centre = dropSlivers(intersect(allowed, offsetRegion(target, 0.5 * r)), 1e-3);
       if (!regionEmpty(centre)) {
-        if (write_paths) {
-          ClearingLevel clear;
-          clear.z = level.z;
-          clear.top = level.z + options.allowance;
-          clear.centre = centre;
-          floor_path.clearing(
-              safeDescents(clearLevel(clear, clearing), SafeDescent(allowed, options.allowance), limit, 2 * r));
+        if (write_paths) {  // cut once every level's are known (cutFloors)
+          FloorLevel floor;
+          floor.clear.z = level.z;
+          floor.clear.top = level.z + options.allowance;
+          floor.clear.centre = centre;
+          floor.allowed = std::make_shared<const Region>(allowed);
+          floor.safe = std::make_shared<const SafeDescent>(*floor.allowed, options.allowance);
+          floors.push_back(std::move(floor));
         }
         const Region swept = offsetRegion(centre, r - kCoveredShrink);
         for (int f : level.floors) {
@@ -391,7 +395,9 @@ ToolRun runTool(const PlanarGroup& group, GroupGeometry& g, const ShadowStack& s
     }
   }
   if (write_paths) {
-    cutWalls(walls, lead, r + kReachSlack, limit, wall_path);
+    cutFloors(floors, clearing, limit, 2 * (r + kReachSlack), floor_path);
+    if (floor_path.started()) wall_path.startAt(floor_path.at());  // the walls follow the floors in the program
+    cutWalls(walls, lead, r + kReachSlack, limit, options.rapid_mm_min, wall_path);
     run.floors = floor_path.take();
     run.walls = wall_path.take();
   }
