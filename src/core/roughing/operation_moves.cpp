@@ -203,11 +203,7 @@ PiecePass cutPieces(const OperationLevels& levels, const Tool& tool, const Opera
 // Seconds the moves take at the options' feed and rapid rates (ramps and plunges at the feed): to compare two
 // orders of the same pieces.
 double movesSeconds(const std::vector<ClearingPoint>& moves, const ClearingOptions& options) {
-  double seconds = 0;
-  for (std::size_t i = 1; i < moves.size(); ++i)
-    seconds += 60 * (moves[i].tip - moves[i - 1].tip).norm() /
-               (moves[i].move == ClearingMove::Rapid ? options.rapid_mm_min : options.feed_mm_min);
-  return seconds;
+  return 60 * (clearingLength(moves, true) / options.feed_mm_min + clearingLength(moves, false) / options.rapid_mm_min);
 }
 
 // The pieces in PieceSchedule's nearest-first order; then, when or-opt (ordered_tour.h) finds an order under the
