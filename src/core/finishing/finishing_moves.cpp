@@ -103,28 +103,32 @@ void cutWalls(const std::vector<WallStretch>& walls, double lead, double reach, 
   if (shortened == nearest) return write(nearest, out);
   // The model counts straight travel; the links written (a hop at the height the stock proves clear, a feed down
   // where no rapid may come) decide the time: the shortened order only where it is quicker as written.
-  PathWriter by_nearest = out, by_shortened = out;
-  write(nearest, by_nearest);
+  PathWriter by_shortened = out;
+  write(nearest, out);
   write(shortened, by_shortened);
-  by_nearest.retract(), by_shortened.retract();  // the order decides where the tool leaves from too
-  const bool quicker = by_shortened.seconds(rapid_mm_min) < by_nearest.seconds(rapid_mm_min);
-  write(quicker ? shortened : nearest, out);
+  if (by_shortened.secondsToRetract(rapid_mm_min) < out.secondsToRetract(rapid_mm_min)) out = std::move(by_shortened);
 }
 
 void cutFloors(const std::vector<FloorLevel>& floors, const ClearingOptions& clearing, const DescentLimit& limit,
-               double reach, PathWriter& out) {
+               double reach, double rapid_mm_min, PathWriter& out) {
+  const double shift = 2 * clearing.tool_radius;
+  PathWriter by_levels = out;
   std::vector<ClearingLevel> levels;
   levels.reserve(floors.size());
-  for (const FloorLevel& f : floors) levels.push_back(f.clear);
+  for (const FloorLevel& f : floors) {
+    levels.push_back(f.clear);
+    by_levels.clearing(safeDescents(clearLevel(f.clear, clearing), *f.safe, limit, shift));
+  }
   PieceSchedule schedule(levels, reach);
   std::optional<Point2> at;
   for (std::size_t i = schedule.next(at); i < schedule.pieces().size(); i = schedule.next(at)) {
     const LevelPiece& piece = schedule.pieces()[i];
     ClearingLevel level = levels[piece.level];
     level.centre = piece.rings;
-    out.clearing(safeDescents(clearLevel(level, clearing), *floors[piece.level].safe, limit, 2 * clearing.tool_radius));
+    out.clearing(safeDescents(clearLevel(level, clearing), *floors[piece.level].safe, limit, shift));
     at = out.at().head<2>();
   }
+  if (by_levels.secondsToRetract(rapid_mm_min) < out.secondsToRetract(rapid_mm_min)) out = std::move(by_levels);
 }
 
 }  // namespace art2part::finishing_detail

@@ -31,12 +31,12 @@ class PathWriter {
  public:
   PathWriter(const SetupFrame& frame, const Tool& tool, int setup, double clearance_z,
              std::shared_ptr<const LinkWay> link = nullptr)
-      : frame_(frame), tool_(tool), setup_(setup), clearance_z_(clearance_z), link_(std::move(link)) {}
+      : frame_(frame), tool_(&tool), setup_(setup), clearance_z_(clearance_z), link_(std::move(link)) {}
 
   void move(const Vec3& p, MoveKind kind) {
     CutterLocation cl;
     cl.setup = setup_;
-    cl.tool = tool_.id;
+    cl.tool = tool_->id;
     cl.move = kind;
     cl.tip = fromFrame(p, frame_);
     cl.axis = frame_.z;
@@ -104,11 +104,12 @@ class PathWriter {
   void startAt(const Vec3& p) {
     if (!started_) at_ = p;
   }
-  // Seconds of the path so far as the plan estimates them (estimateTime): feeds at the tool's rate, rapids at
-  // `rapid_mm_min`.
-  double seconds(double rapid_mm_min) const {
-    return 60 * (toolpathLength(path_, MoveKind::Feed) / std::max(tool_.feed_mm_min, 1.0) +
-                 toolpathLength(path_, MoveKind::Rapid) / std::max(rapid_mm_min, 1.0));
+  // Seconds of the path so far and a retract from where it ends, as the plan estimates them (estimateTime): feeds at
+  // the tool's rate, rapids at `rapid_mm_min`. To compare two ways of writing the same cuts.
+  double secondsToRetract(double rapid_mm_min) const {
+    const double retract = started_ ? std::max(0.0, clearance_z_ - at_.z()) : 0.0;
+    return 60 * (toolpathLength(path_, MoveKind::Feed) / std::max(tool_->feed_mm_min, 1.0) +
+                 (toolpathLength(path_, MoveKind::Rapid) + retract) / std::max(rapid_mm_min, 1.0));
   }
 
  private:
@@ -125,7 +126,7 @@ class PathWriter {
   }
 
   SetupFrame frame_;
-  const Tool& tool_;
+  const Tool* tool_;  // never null: a pointer so that writers may be assigned (a trial's kept)
   int setup_;
   double clearance_z_;
   std::shared_ptr<const LinkWay> link_;  // shared by the writers of one tool's passes (and their trial copies)
@@ -223,10 +224,13 @@ struct FloorLevel {
 };
 // Clears the floors piece by piece (the connected pieces of every level's centre, PieceSchedule with the level index
 // as the depth), the piece nearest the tool first, each only once every piece of a level above within `reach` of it
-// is cut: the walls' rule (cutWalls). Each piece as clearLevel clears it, its descents moved by safeDescents.
-// Why: level after level, the face mill crossed the part between the floors at both ends at every level.
+// is cut: the walls' rule (cutWalls). Each piece as clearLevel clears it, its descents moved by safeDescents. Kept
+// where its moves take less time than level after level (clearLevel over each level's whole centre), feeds at the
+// tool's rate and rapids at `rapid_mm_min`: the links differ (a descent where no rapid may come is a feed; Ailette's
+// flat1 fed 78 mm more down piece by piece). Why: level after level, the face mill crossed the part between the
+// floors at both ends at every level.
 void cutFloors(const std::vector<FloorLevel>& floors, const ClearingOptions& clearing, const DescentLimit& limit,
-               double reach, PathWriter& out);
+               double reach, double rapid_mm_min, PathWriter& out);
 
 // A wall stretch to cut at one level (`top`: the level's allowance top), with the level's allowed region and safe
 // descents, which the level's stretches share.

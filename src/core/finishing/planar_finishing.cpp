@@ -395,7 +395,7 @@ ToolRun runTool(const PlanarGroup& group, GroupGeometry& g, const ShadowStack& s
     }
   }
   if (write_paths) {
-    cutFloors(floors, clearing, limit, 2 * (r + kReachSlack), floor_path);
+    cutFloors(floors, clearing, limit, 2 * (r + kReachSlack), options.rapid_mm_min, floor_path);
     if (floor_path.started()) wall_path.startAt(floor_path.at());  // the walls follow the floors in the program
     cutWalls(walls, lead, r + kReachSlack, limit, options.rapid_mm_min, wall_path);
     run.floors = floor_path.take();
