@@ -420,5 +420,58 @@ TEST(UselessOperations, TheUselessOfASetupWithFindingsStayTheOthersGo) {
   EXPECT_EQ(plan.verification.collisions, 0);  // the verification of the plan as kept
 }
 
+// As above, but the first setup's missing run shows in the last setup too (the stock it leaves reaches the later
+// setup's cuts): without both runs, both setups have findings. Putting back the earliest setup's alone is tried
+// first: clean, so the last setup's run goes. Putting back every setup with findings at once kept both runs.
+TEST(UselessOperations, AnEarlierSetupsDropIsPutBackBeforeALaterSetupsFindingsKeepItsOwn) {
+  PocketPlan pocket = pocketPlan();
+  const Part& part = pocket.part;
+  PlanResult& plan = pocket.plan;
+  ASSERT_TRUE(plan.verified);
+  std::vector<RoughingOperation>& ops = plan.roughing.operations;
+  ASSERT_GE(ops.size(), 2u);
+  const int first_setup = ops.front().setup, last_setup = ops.back().setup;
+  ASSERT_NE(first_setup, last_setup) << "the part needs two setups for this test";
+  ops.push_back(ops.back());
+  ops.insert(ops.begin() + 1, ops.front());
+  auto roughingIn = [](const PlanResult& p, int setup) {
+    return std::count_if(p.roughing.operations.begin(), p.roughing.operations.end(),
+                         [&](const RoughingOperation& op) { return op.setup == setup; });
+  };
+  const auto first_setup_ops = roughingIn(plan, first_setup), last_setup_ops = roughingIn(plan, last_setup);
+  int verifications = 0;
+  const auto verifier = [&](const PlanResult& p, VerificationState& state) {
+    ++verifications;
+    VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, p.toolpath, p.tools,
+                                               planVerifyOptions(part, p, pocket.library, pocket.options), &state);
+    if (roughingIn(p, first_setup) < first_setup_ops)  // the first setup's run is gone: both setups find it
+      for (const int setup : {first_setup, last_setup})
+        for (const PlanOperation& op : p.operations)
+          if (op.setup == setup) {
+            ++report.by_op[op.index].collisions;
+            ++report.collisions;
+            break;
+          }
+    return report;
+  };
+  combinePlan(plan, part, pocket.library, pocket.options);
+  plan.verification = verifier(plan, plan.simulation);
+  ASSERT_EQ(plan.verification.collisions, 0);
+  const std::vector<int> useless = uselessRoughing(plan);
+  ASSERT_NE(std::find(useless.begin(), useless.end(), 1), useless.end());
+  ASSERT_NE(std::find(useless.begin(), useless.end(), static_cast<int>(ops.size()) - 1), useless.end());
+
+  verifications = 0;
+  dropUselessRoughing(plan, part, pocket.library, pocket.options, verifier);
+  EXPECT_EQ(verifications, 2) << "without all; then with the first setup's put back";
+  ASSERT_TRUE(plan.useless.dropped) << plan.useless.kept_why;
+  EXPECT_NE(plan.useless.kept_why.find("setups " + std::to_string(first_setup) + " kept: without all of them"),
+            std::string::npos)
+      << plan.useless.kept_why;
+  EXPECT_EQ(roughingIn(plan, first_setup), first_setup_ops);
+  EXPECT_LT(roughingIn(plan, last_setup), last_setup_ops);
+  EXPECT_EQ(plan.verification.collisions, 0);
+}
+
 }  // namespace
 }  // namespace art2part

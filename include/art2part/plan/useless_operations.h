@@ -10,10 +10,13 @@
 // when that verification finds no more gouges and no more collisions than the first and leaves at most what the
 // dropped operations removed beyond the first's leftover (what they took falls to the operations after them or stays);
 // otherwise, when that verification found its gouges or collisions in some setups only, the useless operations of
-// those setups are put back (the operations after one in its setup may rely on the little it took: a skin a rapid
-// crosses), the others left out and the plan verified once more under the same rule. Failing that too, the plan is
-// put back exactly as it was (operations, toolpath, verification) and says why. No further rounds: the operations
-// after a dropped one cut what it left, so none of them becomes useless by the drop.
+// setups with findings are put back (the operations after one in its setup may rely on the little it took: a skin a
+// rapid crosses), the others left out and the plan verified again under the same rule: first those of the earliest
+// setup with findings only (setups are cut in sequence, so findings in a later setup may come from the stock an
+// earlier setup's drop left), then also those of the next setup with findings in any trial so far, the third and
+// last round those of every such setup. Failing all, the plan is put back exactly as it was (operations, toolpath,
+// verification) and says why. Operations found useless are not looked for again: the operations after a dropped one
+// cut what it left, so none of them becomes useless by the drop.
 #pragma once
 
 #include <functional>

@@ -13,6 +13,8 @@ namespace {
 
 // The leftover may differ from the sum by float rounding of the lattice's volumes only.
 constexpr double kVolumeSlack = 1e-9;
+// Verifications after the first without every useless operation: each puts some setups' back (dropUselessRoughing).
+constexpr int kKeepRounds = 3;
 
 double roughingRemoved(const PlanResult& plan) {
   double removed = 0;
@@ -121,6 +123,15 @@ void putBack(PlanResult& plan, Trial& trial) {
     plan.roughing.operations.insert(plan.roughing.operations.begin() + trial.drop[i], std::move(trial.held[i]));
 }
 
+// Keeps the plan without trial.drop (left out of the plan already): their lines, its verification and simulation.
+void keep(PlanResult& plan, Trial& trial, const std::map<int, double>& removed, double roughing_removed) {
+  plan.useless.dropped = true;
+  for (std::size_t i = 0; i < trial.drop.size(); ++i)
+    plan.roughing.dropped.push_back(droppedBySimulation(trial.held[i], removed.at(trial.drop[i]), roughing_removed));
+  plan.verification = std::move(trial.report);
+  plan.simulation = std::move(trial.state);
+}
+
 }  // namespace
 
 void dropUselessRoughing(PlanResult& plan, const Part& part, const ToolLibrary& library, const PlanOptions& options,
@@ -144,46 +155,42 @@ void dropUselessRoughing(PlanResult& plan, const Part& part, const ToolLibrary& 
   };
   Trial all{useless, {}, {}, {}};
   leaveOut(plan, part, library, options, verify, all);
-  std::string why = notAsClean(plan.verification, all.report, removedByAll(useless));
-  Trial* kept_trial = why.empty() ? &all : nullptr;
-  Trial some;
-  if (!why.empty() && !all.report.cancelled) {
-    // Second round: the operations after a useless one in its setup may rely on the little it took (a skin a rapid
-    // crosses); keep the useless operations of the setups where the simulation without them finds something, leave
-    // out the others.
-    const std::set<int> troubled = setupsWithFindings(plan, all.report);
+  const std::string why = notAsClean(plan.verification, all.report, removedByAll(useless));
+  if (why.empty()) return keep(plan, all, removed, roughing_removed);
+  const std::string why_all = notAsClean(plan.verification, all.report, removedByAll(useless), "all of them");
+  std::set<int> troubled = setupsWithFindings(plan, all.report);
+  putBack(plan, all);
+  // Later rounds: put the useless operations of setups with findings back, the earliest such setup first (setups are
+  // cut in sequence: findings in a later setup may come from the stock an earlier one's drop left), the last round
+  // every setup with findings.
+  std::set<int> kept_setups;
+  for (int round = 1; round <= kKeepRounds && !troubled.empty() && !all.report.cancelled; ++round) {
+    if (round == kKeepRounds) kept_setups.insert(troubled.begin(), troubled.end());
+    else kept_setups.insert(*troubled.begin());
+    Trial some;
     for (int source : useless)
-      if (!troubled.count(setup[source])) some.drop.push_back(source);
-    if (!troubled.empty() && !some.drop.empty()) {
-      putBack(plan, all);
-      leaveOut(plan, part, library, options, verify, some);
-      if (notAsClean(plan.verification, some.report, removedByAll(some.drop)).empty()) {
-        kept_trial = &some;
-        plan.useless.kept = static_cast<int>(useless.size() - some.drop.size());
-        std::string listed;
-        for (int k : troubled) listed += (listed.empty() ? "" : ", ") + std::to_string(k);
-        plan.useless.kept_why = "those of setups " + listed + " kept: " +
-                                notAsClean(plan.verification, all.report, removedByAll(useless), "all of them");
-      } else {
-        putBack(plan, some);
-        some.drop.clear();
-        all.drop.clear();  // everything is back in
-      }
+      if (!kept_setups.count(setup[source])) some.drop.push_back(source);
+    if (some.drop.empty()) break;
+    leaveOut(plan, part, library, options, verify, some);
+    if (notAsClean(plan.verification, some.report, removedByAll(some.drop)).empty()) {
+      std::string listed;
+      for (int k : kept_setups) listed += (listed.empty() ? "" : ", ") + std::to_string(k);
+      plan.useless.kept = static_cast<int>(useless.size() - some.drop.size());
+      plan.useless.kept_why = "those of setups " + listed + " kept: " + why_all;
+      return keep(plan, some, removed, roughing_removed);
     }
-  }
-  if (kept_trial) {
-    plan.useless.dropped = true;
-    for (std::size_t i = 0; i < kept_trial->drop.size(); ++i)
-      plan.roughing.dropped.push_back(
-          droppedBySimulation(kept_trial->held[i], removed[kept_trial->drop[i]], roughing_removed));
-    plan.verification = std::move(kept_trial->report);
-    plan.simulation = std::move(kept_trial->state);
-    return;
+    if (some.report.cancelled) {
+      all.report.cancelled = true;
+    } else {
+      for (int k : setupsWithFindings(plan, some.report))
+        if (!kept_setups.count(k)) troubled.insert(k);
+      for (int k : kept_setups) troubled.erase(k);
+    }
+    putBack(plan, some);
   }
   plan.useless.kept = plan.useless.found;
   plan.useless.kept_why = why;
-  plan.cancelled = plan.cancelled || all.report.cancelled || some.report.cancelled;
-  putBack(plan, all);
+  plan.cancelled = plan.cancelled || all.report.cancelled;
   combinePlan(plan, part, library, options);
 }
 
