@@ -509,6 +509,31 @@ TEST(ClearingPaths, AnOpenContourStretchStartsAtTheEndNearerTheTool) {
   }
 }
 
+// The same band where nothing is known clear over the slab (a rest pass's or a later setup's level): the contour
+// starts straight below where the tool stands, at the end of the level above (a reach pass's profile, level after
+// level: featuretype's op 21 climbed 18 mm to the clearance plane and fed back down at every level). The way up the
+// column and back ends where it began: the tool goes no higher than the safe height over the slab.
+TEST(ClearingPaths, ACutStraightBelowTheToolIsEnteredWithoutClimbing) {
+  const Region inner = region({rectangle(5, 5, 55, 40)});
+  const Region centre = subtract(region({rectangle(0, 0, 60, 40)}), inner);
+  ClearingLevel level = levelOf(centre, subtract(centre, offsetRegion(inner, 2)));
+  level.column_clear = level.descents_clear = false;
+  ClearingOptions options = optionsOf(8);
+  options.stay_down = true;
+  const Point2 end(0, 40);
+  level.from = Eigen::Vector3d(end.x(), end.y(), level.top);
+  ClearingStats stats;
+  const std::vector<ClearingPoint> moves = clearChecked(level, options, stats);
+  const auto first_cut = std::find_if(moves.begin(), moves.end(),
+                                      [](const ClearingPoint& m) { return m.move != ClearingMove::Rapid; });
+  ASSERT_NE(first_cut, moves.end());
+  EXPECT_LE((xy(*first_cut) - end).norm(), 1.0);
+  double highest = -1e9;
+  for (const ClearingPoint& m : moves) highest = std::max(highest, m.tip.z());
+  EXPECT_LE(highest, level.top + options.safe_height + 1e-9) << "the clearance plane is at " << options.clearance_z;
+  EXPECT_EQ(stats.retracts, 0);
+}
+
 // A strip cut by lines across it, one boustrophedon pass from end to end, with its far end in air: a pass began at
 // its end in air whatever that cost, so the tool crossed the whole strip to plunge there (featuretype's thin levels
 // crossed the part, 120-170 mm, to begin bands round it). The start is the cheaper by time: on a thin level, where a

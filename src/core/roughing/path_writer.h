@@ -19,6 +19,7 @@ namespace clearing_detail {
 constexpr double kMinRampRun = 0.5;            // mm: a path shorter than this is no ramp
 constexpr double kInset = 3.0 / kRegionScale;  // mm a point on a ring edge is moved into the region before rounding
 constexpr int kProbeDirections = 16;           // directions tried for a ramp where the pass itself is too short
+constexpr double kSameColumn = 1e-6;           // mm: a link this short across is straight down the tool's column
 
 using Polyline = std::vector<Point2>;
 
@@ -234,10 +235,14 @@ class PathWriter {
     add(start, safe_z_, ClearingMove::Rapid);
   }
 
-  // The lowest height at which the straight way from `a` to `b` is proven clear: the safe height over this level's
-  // centre (clear above its top), a cleared level's z + safe height over its centre (both only where the column is
-  // clear: ClearingLevel::column_clear), what the stock model proves; else the clearance plane.
+  // The lowest height at which the straight way from `a` (where the tool stands) to `b` is proven clear: the safe
+  // height over this level's centre (clear above its top), a cleared level's z + safe height over its centre (both
+  // only where the column is clear: ClearingLevel::column_clear), what the stock model proves; else the clearance
+  // plane.
   double hopHeight(const Point2& a, const Point2& b, bool inside_centre) const {
+    // Straight below where the tool stands: the way up the column and back down it, over the clearance plane or not,
+    // ends at the same point, so it need not climb (the column over the tool is where a retract goes anyway).
+    if ((b - a).squaredNorm() < kSameColumn * kSameColumn) return safe_z_;
     if (inside_centre && level_.column_clear) return safe_z_;
     double best = options_.clearance_z;
     if (level_.column_clear)
