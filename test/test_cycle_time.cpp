@@ -367,110 +367,92 @@ TEST(UselessOperations, ARoughingRunTwiceIsDroppedWhenThePlanWithoutItIsAsClean)
   EXPECT_EQ(j["useless_roughing"]["kept"].get<int>(), 0);
 }
 
-// Two setups each with a roughing run twice: when the simulation without both finds a collision in the first one's
-// setup only (here a verifier that says so), that setup's useless run is put back and the other setup's left out.
-TEST(UselessOperations, TheUselessOfASetupWithFindingsStayTheOthersGo) {
-  PocketPlan pocket = pocketPlan();
-  const Part& part = pocket.part;
-  PlanResult& plan = pocket.plan;
-  ASSERT_TRUE(plan.verified);
-  std::vector<RoughingOperation>& ops = plan.roughing.operations;
-  ASSERT_GE(ops.size(), 2u);
-  const int first_setup = ops.front().setup, last_setup = ops.back().setup;
-  ASSERT_NE(first_setup, last_setup) << "the part needs two setups for this test";
-  ops.push_back(ops.back());
-  ops.insert(ops.begin() + 1, ops.front());
-  auto roughingIn = [](const PlanResult& p, int setup) {
+// The pocket plan (two setups) with its first roughing operation and its last each run twice, verified again by a
+// verifier that adds a collision to the first setup (and the last, with `last_finds_too`) while the first setup's
+// second run is gone (the run the first setup's rest relies on): both second runs are useless.
+class UselessRunsInTwoSetups : public ::testing::Test {
+ protected:
+  static long roughingIn(const PlanResult& p, int setup) {
     return std::count_if(p.roughing.operations.begin(), p.roughing.operations.end(),
                          [&](const RoughingOperation& op) { return op.setup == setup; });
-  };
-  const auto first_setup_ops = roughingIn(plan, first_setup), last_setup_ops = roughingIn(plan, last_setup);
-  const auto verifier = [&](const PlanResult& p, VerificationState& state) {
-    VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, p.toolpath, p.tools,
-                                               planVerifyOptions(part, p, pocket.library, pocket.options), &state);
-    if (roughingIn(p, first_setup) < first_setup_ops)  // the run the first setup's rest relies on is gone
-      for (const PlanOperation& op : p.operations)
-        if (op.setup == first_setup) {
-          ++report.by_op[op.index].collisions;
-          ++report.collisions;
-          break;
-        }
-    return report;
-  };
-  combinePlan(plan, part, pocket.library, pocket.options);
-  plan.verification = verifier(plan, plan.simulation);
-  ASSERT_EQ(plan.verification.collisions, 0);
-  const std::vector<int> useless = uselessRoughing(plan);
-  ASSERT_NE(std::find(useless.begin(), useless.end(), 1), useless.end());
-  ASSERT_NE(std::find(useless.begin(), useless.end(), static_cast<int>(ops.size()) - 1), useless.end());
+  }
+  void runTwice(bool last_finds_too) {
+    PlanResult& plan = pocket.plan;
+    ASSERT_TRUE(plan.verified);
+    std::vector<RoughingOperation>& ops = plan.roughing.operations;
+    ASSERT_GE(ops.size(), 2u);
+    first_setup = ops.front().setup, last_setup = ops.back().setup;
+    ASSERT_NE(first_setup, last_setup) << "the part needs two setups for this test";
+    ops.push_back(ops.back());
+    ops.insert(ops.begin() + 1, ops.front());
+    first_setup_ops = roughingIn(plan, first_setup), last_setup_ops = roughingIn(plan, last_setup);
+    std::vector<int> finding_setups{first_setup};
+    if (last_finds_too) finding_setups.push_back(last_setup);
+    verifier = [this, finding_setups](const PlanResult& p, VerificationState& state) {
+      ++verifications;
+      VerificationReport report = verifyToolpath(pocket.part.mesh, pocket.part.triangle_face, p.toolpath, p.tools,
+                                                 planVerifyOptions(pocket.part, p, pocket.library, pocket.options),
+                                                 &state);
+      if (roughingIn(p, first_setup) < first_setup_ops)
+        for (const int setup : finding_setups)
+          for (const PlanOperation& op : p.operations)
+            if (op.setup == setup) {
+              ++report.by_op[op.index].collisions;
+              ++report.collisions;
+              break;
+            }
+      return report;
+    };
+    combinePlan(plan, pocket.part, pocket.library, pocket.options);
+    plan.verification = verifier(plan, plan.simulation);
+    ASSERT_EQ(plan.verification.collisions, 0);
+    const std::vector<int> useless = uselessRoughing(plan);
+    ASSERT_NE(std::find(useless.begin(), useless.end(), 1), useless.end());
+    ASSERT_NE(std::find(useless.begin(), useless.end(), static_cast<int>(ops.size()) - 1), useless.end());
+    verifications = 0;
+  }
+  // The first setup's runs all kept, the last setup's second one left out, the plan as kept verified clean.
+  void expectOnlyTheLastSetupsRunLeftOut(std::size_t dropped_before) {
+    const PlanResult& plan = pocket.plan;
+    EXPECT_TRUE(plan.useless.dropped) << plan.useless.kept_why;
+    EXPECT_GE(plan.useless.kept, 1);
+    EXPECT_LT(plan.useless.kept, plan.useless.found);
+    EXPECT_NE(plan.useless.kept_why.find("setups " + std::to_string(first_setup) + " kept: without all of them"),
+              std::string::npos)
+        << plan.useless.kept_why;
+    EXPECT_EQ(roughingIn(plan, first_setup), first_setup_ops);
+    EXPECT_LT(roughingIn(plan, last_setup), last_setup_ops);
+    ASSERT_GT(plan.roughing.dropped.size(), dropped_before);
+    for (std::size_t i = dropped_before; i < plan.roughing.dropped.size(); ++i)
+      EXPECT_NE(plan.roughing.dropped[i].setup, first_setup);
+    EXPECT_EQ(plan.verification.collisions, 0);  // the verification of the plan as kept
+  }
 
-  const std::size_t dropped_before = plan.roughing.dropped.size();
-  dropUselessRoughing(plan, part, pocket.library, pocket.options, verifier);
-  EXPECT_TRUE(plan.useless.dropped) << plan.useless.kept_why;
-  EXPECT_GE(plan.useless.kept, 1);
-  EXPECT_LT(plan.useless.kept, plan.useless.found);
-  EXPECT_NE(plan.useless.kept_why.find("setups " + std::to_string(first_setup) + " kept: without all of them"),
-            std::string::npos)
-      << plan.useless.kept_why;
-  EXPECT_EQ(roughingIn(plan, first_setup), first_setup_ops);
-  EXPECT_LT(roughingIn(plan, last_setup), last_setup_ops);
-  ASSERT_GT(plan.roughing.dropped.size(), dropped_before);
-  for (std::size_t i = dropped_before; i < plan.roughing.dropped.size(); ++i)
-    EXPECT_NE(plan.roughing.dropped[i].setup, first_setup);
-  EXPECT_EQ(plan.verification.collisions, 0);  // the verification of the plan as kept
+  PocketPlan pocket = pocketPlan();
+  int first_setup = -1, last_setup = -1;
+  long first_setup_ops = 0, last_setup_ops = 0;
+  int verifications = 0;
+  PlanVerifier verifier;
+};
+
+// When the simulation without both second runs finds a collision in the first setup only, that setup's useless run
+// is put back and the other setup's left out.
+TEST_F(UselessRunsInTwoSetups, TheUselessOfASetupWithFindingsStayTheOthersGo) {
+  ASSERT_NO_FATAL_FAILURE(runTwice(false));
+  const std::size_t dropped_before = pocket.plan.roughing.dropped.size();
+  dropUselessRoughing(pocket.plan, pocket.part, pocket.library, pocket.options, verifier);
+  expectOnlyTheLastSetupsRunLeftOut(dropped_before);
 }
 
-// As above, but the first setup's missing run shows in the last setup too (the stock it leaves reaches the later
-// setup's cuts): without both runs, both setups have findings. Putting back the earliest setup's alone is tried
-// first: clean, so the last setup's run goes. Putting back every setup with findings at once kept both runs.
-TEST(UselessOperations, AnEarlierSetupsDropIsPutBackBeforeALaterSetupsFindingsKeepItsOwn) {
-  PocketPlan pocket = pocketPlan();
-  const Part& part = pocket.part;
-  PlanResult& plan = pocket.plan;
-  ASSERT_TRUE(plan.verified);
-  std::vector<RoughingOperation>& ops = plan.roughing.operations;
-  ASSERT_GE(ops.size(), 2u);
-  const int first_setup = ops.front().setup, last_setup = ops.back().setup;
-  ASSERT_NE(first_setup, last_setup) << "the part needs two setups for this test";
-  ops.push_back(ops.back());
-  ops.insert(ops.begin() + 1, ops.front());
-  auto roughingIn = [](const PlanResult& p, int setup) {
-    return std::count_if(p.roughing.operations.begin(), p.roughing.operations.end(),
-                         [&](const RoughingOperation& op) { return op.setup == setup; });
-  };
-  const auto first_setup_ops = roughingIn(plan, first_setup), last_setup_ops = roughingIn(plan, last_setup);
-  int verifications = 0;
-  const auto verifier = [&](const PlanResult& p, VerificationState& state) {
-    ++verifications;
-    VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, p.toolpath, p.tools,
-                                               planVerifyOptions(part, p, pocket.library, pocket.options), &state);
-    if (roughingIn(p, first_setup) < first_setup_ops)  // the first setup's run is gone: both setups find it
-      for (const int setup : {first_setup, last_setup})
-        for (const PlanOperation& op : p.operations)
-          if (op.setup == setup) {
-            ++report.by_op[op.index].collisions;
-            ++report.collisions;
-            break;
-          }
-    return report;
-  };
-  combinePlan(plan, part, pocket.library, pocket.options);
-  plan.verification = verifier(plan, plan.simulation);
-  ASSERT_EQ(plan.verification.collisions, 0);
-  const std::vector<int> useless = uselessRoughing(plan);
-  ASSERT_NE(std::find(useless.begin(), useless.end(), 1), useless.end());
-  ASSERT_NE(std::find(useless.begin(), useless.end(), static_cast<int>(ops.size()) - 1), useless.end());
-
-  verifications = 0;
-  dropUselessRoughing(plan, part, pocket.library, pocket.options, verifier);
+// The first setup's missing run shows in the last setup too (the stock it leaves reaches the later setup's cuts):
+// without both runs, both setups have findings. Putting back the earliest setup's alone is tried first: clean, so the
+// last setup's run goes. Putting back every setup with findings at once kept both runs.
+TEST_F(UselessRunsInTwoSetups, AnEarlierSetupsDropIsPutBackBeforeALaterSetupsFindingsKeepItsOwn) {
+  ASSERT_NO_FATAL_FAILURE(runTwice(true));
+  const std::size_t dropped_before = pocket.plan.roughing.dropped.size();
+  dropUselessRoughing(pocket.plan, pocket.part, pocket.library, pocket.options, verifier);
   EXPECT_EQ(verifications, 2) << "without all; then with the first setup's put back";
-  ASSERT_TRUE(plan.useless.dropped) << plan.useless.kept_why;
-  EXPECT_NE(plan.useless.kept_why.find("setups " + std::to_string(first_setup) + " kept: without all of them"),
-            std::string::npos)
-      << plan.useless.kept_why;
-  EXPECT_EQ(roughingIn(plan, first_setup), first_setup_ops);
-  EXPECT_LT(roughingIn(plan, last_setup), last_setup_ops);
-  EXPECT_EQ(plan.verification.collisions, 0);
+  expectOnlyTheLastSetupsRunLeftOut(dropped_before);
 }
 
 }  // namespace

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <optional>
 
 #include "art2part/finishing/admissible.h"
 #include "art2part/finishing/face_assignment.h"
@@ -368,9 +370,7 @@ TEST(PlanarFinishing, FloorLinksStayDownWhereTheStockLeftProvesTheWayClear) {
 }
 
 // Two stepped pockets 60 mm apart, each an upper pocket 10 mm deep with a lower one 10 mm deeper in its floor: their
-// walls stand at two levels; `grow` adds a skin (the stock roughing leaves). Level after level, the tool crossed from
-// one pocket to the other at each level; now it finishes one pocket's walls top down before crossing, and the
-// simulation, against the stock with its 0.3 mm skin, finds no gouge and no collision.
+// walls and floors stand at two levels; `grow` adds a skin (the stock roughing leaves).
 namespace {
 
 TopoDS_Shape steppedPockets(double g) {
@@ -382,47 +382,19 @@ TopoDS_Shape steppedPockets(double g) {
   return shape;
 }
 
-}  // namespace
-
-TEST(PlanarFinishing, WallsAreFinishedPocketByPocketTopDown) {
+// Finishes the stepped pockets' faces that `kind` gives a kind (none: not a target) from above; the tool crosses from
+// one pocket to the other at most once per operation (a tool change starts again), and the simulation, against the
+// stock with its 0.3 mm skin, finds no gouge and no collision.
+void expectPocketByPocket(const std::function<std::optional<FinishingKind>(const Face&)>& kind, std::size_t targets) {
   const Part part = test::stepPart(steppedPockets(0), "stepped_pockets", fine());
   const Part stock = test::stepPart(steppedPockets(kSkin), "stepped_pockets_stock", fine());
   const ToolLibrary library = loadToolLibrary(kTools);
   PlanarGroup group;
   group.frame = setupFrame(part, Vec3::UnitZ());
   group.stock = test::box(Vec3(-2, -2, -2), Vec3(122, 42, 32));
-  for (int f = 0; f < static_cast<int>(part.faces.size()); ++f) {
-    const Face& face = part.faces[f];
-    if (face.type == SurfaceType::Plane && std::abs(face.normal.z()) < 1e-9 && face.area < 30 * 10 + 1)
-      group.targets.push_back({f, FinishingKind::SideMill});
-  }
-  ASSERT_EQ(group.targets.size(), 16u) << "4 walls in each of the 4 pockets";
-  const PlanarResult result = finishPlanar(part, group, flatsLargestFirst(library), FinishingOptions{});
-  const auto [path, tools] = programOf(result.operations, library);
-  ASSERT_FALSE(path.empty());
-  int crossings = 0;  // from one pocket to the other, within an operation (a tool change starts again)
-  for (std::size_t i = 1; i < path.size(); ++i)
-    crossings += path[i].tool == path[i - 1].tool && (path[i].tip.x() > 60) != (path[i - 1].tip.x() > 60);
-  std::printf("%zu operations, %d crossings between the pockets\n", result.operations.size(), crossings);
-  EXPECT_LE(crossings, static_cast<int>(result.operations.size()));
-  expectNoGougeNorCollision(part, path, tools, stock.mesh, 0.2);
-}
-
-// Likewise the floors of the stepped pockets (each pocket's two): level after level the face mill crossed from one
-// pocket to the other at each level; now piece by piece, nearest first, each after the floors above it.
-TEST(PlanarFinishing, FloorsAreFacedPocketByPocketTopDown) {
-  const Part part = test::stepPart(steppedPockets(0), "stepped_pockets", fine());
-  const Part stock = test::stepPart(steppedPockets(kSkin), "stepped_pockets_stock", fine());
-  const ToolLibrary library = loadToolLibrary(kTools);
-  PlanarGroup group;
-  group.frame = setupFrame(part, Vec3::UnitZ());
-  group.stock = test::box(Vec3(-2, -2, -2), Vec3(122, 42, 32));
-  for (int f = 0; f < static_cast<int>(part.faces.size()); ++f) {
-    const Face& face = part.faces[f];
-    if (face.type == SurfaceType::Plane && face.normal.z() > 1 - 1e-9 && face.offset < 25)
-      group.targets.push_back({f, FinishingKind::FaceMill});
-  }
-  ASSERT_EQ(group.targets.size(), 4u) << "the upper and the lower floor of each pocket";
+  for (int f = 0; f < static_cast<int>(part.faces.size()); ++f)
+    if (const std::optional<FinishingKind> k = kind(part.faces[f])) group.targets.push_back({f, *k});
+  ASSERT_EQ(group.targets.size(), targets);
   const PlanarResult result = finishPlanar(part, group, flatsLargestFirst(library), FinishingOptions{});
   const auto [path, tools] = programOf(result.operations, library);
   ASSERT_FALSE(path.empty());
@@ -432,6 +404,32 @@ TEST(PlanarFinishing, FloorsAreFacedPocketByPocketTopDown) {
   std::printf("%zu operations, %d crossings between the pockets\n", result.operations.size(), crossings);
   EXPECT_LE(crossings, static_cast<int>(result.operations.size()));
   expectNoGougeNorCollision(part, path, tools, stock.mesh, 0.2);
+}
+
+}  // namespace
+
+// Level after level, the tool crossed from one pocket to the other at each level; now it finishes one pocket's walls
+// top down before crossing.
+TEST(PlanarFinishing, WallsAreFinishedPocketByPocketTopDown) {
+  expectPocketByPocket(
+      [](const Face& face) -> std::optional<FinishingKind> {
+        if (face.type == SurfaceType::Plane && std::abs(face.normal.z()) < 1e-9 && face.area < 30 * 10 + 1)
+          return FinishingKind::SideMill;
+        return std::nullopt;
+      },
+      16);  // 4 walls in each of the 4 pockets
+}
+
+// Likewise the floors (each pocket's two): the face mill went level after level; now piece by piece, nearest first,
+// each after the floors above it (level after level: 4 crossings for 3 operations).
+TEST(PlanarFinishing, FloorsAreFacedPocketByPocketTopDown) {
+  expectPocketByPocket(
+      [](const Face& face) -> std::optional<FinishingKind> {
+        if (face.type == SurfaceType::Plane && face.normal.z() > 1 - 1e-9 && face.offset < 25)
+          return FinishingKind::FaceMill;
+        return std::nullopt;
+      },
+      4);  // the upper and the lower floor of each pocket
 }
 
 // A 100 x 60 x 80 block with a 40 x 40 pocket 70 deep, its top and the pocket's floor to face-mill: flat20's holder
