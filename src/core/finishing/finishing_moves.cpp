@@ -112,22 +112,25 @@ void cutWalls(const std::vector<WallStretch>& walls, double lead, double reach, 
 void cutFloors(const std::vector<FloorLevel>& floors, const ClearingOptions& clearing, const DescentLimit& limit,
                double reach, double rapid_mm_min, PathWriter& out) {
   const double shift = 2 * clearing.tool_radius;
-  PathWriter by_levels = out;
   std::vector<ClearingLevel> levels;
   levels.reserve(floors.size());
-  for (const FloorLevel& f : floors) {
-    levels.push_back(f.clear);
-    by_levels.clearing(safeDescents(clearLevel(f.clear, clearing), *f.safe, limit, shift));
-  }
+  for (const FloorLevel& f : floors) levels.push_back(f.clear);
+  PathWriter by_levels = out;
   PieceSchedule schedule(levels, reach);
+  const std::vector<LevelPiece>& pieces = schedule.pieces();
+  bool as_levels = pieces.size() == levels.size();  // one piece per level, cut in level order so far
   std::optional<Point2> at;
-  for (std::size_t i = schedule.next(at); i < schedule.pieces().size(); i = schedule.next(at)) {
-    const LevelPiece& piece = schedule.pieces()[i];
-    ClearingLevel level = levels[piece.level];
-    level.centre = piece.rings;
-    out.clearing(safeDescents(clearLevel(level, clearing), *floors[piece.level].safe, limit, shift));
+  std::size_t taken = 0;
+  for (std::size_t i = schedule.next(at); i < pieces.size(); i = schedule.next(at), ++taken) {
+    as_levels = as_levels && i == taken && pieces[i].level == i;
+    ClearingLevel level = levels[pieces[i].level];
+    level.centre = pieces[i].rings;
+    out.clearing(safeDescents(clearLevel(level, clearing), *floors[pieces[i].level].safe, limit, shift));
     at = out.at().head<2>();
   }
+  if (as_levels) return;  // the same clearing as level after level: no need to write that too
+  for (const FloorLevel& f : floors)
+    by_levels.clearing(safeDescents(clearLevel(f.clear, clearing), *f.safe, limit, shift));
   if (by_levels.secondsToRetract(rapid_mm_min) < out.secondsToRetract(rapid_mm_min)) out = std::move(by_levels);
 }
 
