@@ -268,6 +268,10 @@ TEST(PlanFigures, RemovedVolumePerOperationSumsToTheSimulation) {
   EXPECT_NEAR(setups, total["total_s"].get<double>(), 1e-6);
 }
 
+// A verification with no earlier sweep to resume from, keeping no checkpoint, never stopped.
+const std::vector<SweepCheckpoint> kNoSweeps;
+const TrialSweep kWholeSweep{kNoSweeps, 0, {}};
+
 // The pocketed block planned at visibility level 2 without finishing, its useless roughing left in (drop_useless
 // false): the plan the useless-operation tests change and verify again.
 struct PocketPlan {
@@ -300,21 +304,21 @@ TEST(UselessOperations, ARoughingRunTwiceIsDroppedWhenThePlanWithoutItIsAsClean)
   const VerificationReport as_planned = plan.verification;
   const Toolpath original = plan.toolpath;
 
-  const auto verifier = [&](const PlanResult& p, VerificationState& state) {
+  const auto verifier = [&](const PlanResult& p, VerificationState& state, const TrialSweep&) {
     return verifyToolpath(part.mesh, part.triangle_face, p.toolpath, p.tools,
                           planVerifyOptions(part, p, pocket.library, pocket.options), &state);
   };
   plan.roughing.operations.insert(plan.roughing.operations.begin() + 1, plan.roughing.operations.front());
   combinePlan(plan, part, pocket.library, pocket.options);
-  plan.verification = verifier(plan, plan.simulation);
+  plan.verification = verifier(plan, plan.simulation, kWholeSweep);
   EXPECT_NEAR(plan.verification.leftover_volume_mm3, as_planned.leftover_volume_mm3, 1e-6 * as_planned.stock_volume_mm3);
   const std::vector<int> useless = uselessRoughing(plan);
   ASSERT_NE(std::find(useless.begin(), useless.end(), 1), useless.end()) << "the second run is useless";
   EXPECT_EQ(std::find(useless.begin(), useless.end(), 0), useless.end()) << "the first run is not";
 
   PlanResult refused = plan;
-  const auto one_more_collision = [&](const PlanResult& p, VerificationState& state) {
-    VerificationReport report = verifier(p, state);
+  const auto one_more_collision = [&](const PlanResult& p, VerificationState& state, const TrialSweep& trial) {
+    VerificationReport report = verifier(p, state, trial);
     ++report.collisions;
     return report;
   };
@@ -386,30 +390,52 @@ class UselessRunsInTwoSetups : public ::testing::Test {
     ops.push_back(ops.back());
     ops.insert(ops.begin() + 1, ops.front());
     first_setup_ops = roughingIn(plan, first_setup), last_setup_ops = roughingIn(plan, last_setup);
-    std::vector<int> finding_setups{first_setup};
+    finding_setups = {first_setup};
     if (last_finds_too) finding_setups.push_back(last_setup);
-    verifier = [this, finding_setups](const PlanResult& p, VerificationState& state) {
-      ++verifications;
-      VerificationReport report = verifyToolpath(pocket.part.mesh, pocket.part.triangle_face, p.toolpath, p.tools,
-                                                 planVerifyOptions(pocket.part, p, pocket.library, pocket.options),
-                                                 &state);
-      if (roughingIn(p, first_setup) < first_setup_ops)
-        for (const int setup : finding_setups)
-          for (const PlanOperation& op : p.operations)
-            if (op.setup == setup) {
-              ++report.by_op[op.index].collisions;
-              ++report.collisions;
-              break;
-            }
-      return report;
-    };
     combinePlan(plan, pocket.part, pocket.library, pocket.options);
-    plan.verification = verifier(plan, plan.simulation);
+    plan.verification = verifier(plan, plan.simulation, kWholeSweep);
     ASSERT_EQ(plan.verification.collisions, 0);
     const std::vector<int> useless = uselessRoughing(plan);
     ASSERT_NE(std::find(useless.begin(), useless.end(), 1), useless.end());
     ASSERT_NE(std::find(useless.begin(), useless.end(), static_cast<int>(ops.size()) - 1), useless.end());
     verifications = 0;
+  }
+  // A collision added to the first operation of each of finding_setups whose rows lie before `end_row`, while the
+  // first setup's second run is gone.
+  void addCollisions(const PlanResult& p, int end_row, VerificationReport& report) const {
+    if (roughingIn(p, first_setup) >= first_setup_ops) return;
+    for (const int setup : finding_setups)
+      for (const PlanOperation& op : p.operations)
+        if (op.setup == setup) {
+          if (static_cast<int>(op.first_point) < end_row) {
+            ++report.by_op[op.index].collisions;
+            ++report.collisions;
+          }
+          break;
+        }
+  }
+  // The verifier of the tests: the simulation with those collisions added. `gated`: it takes the trial's checkpoints
+  // and gate (as planPart's does: the gate sees the added collisions too); else it sweeps the whole path (as the cell's
+  // service does). rows_swept adds up the rows each verification swept.
+  PlanVerifier verifierOf(bool gated) {
+    return [this, gated](const PlanResult& p, VerificationState& state, const TrialSweep& trial) {
+      ++verifications;
+      VerifyOptions options = planVerifyOptions(pocket.part, p, pocket.library, pocket.options);
+      if (gated) {
+        options.checkpoints = trial.checkpoints;
+        options.keep_sweeping = [&](int row, const VerificationReport& so_far) {
+          VerificationReport seen = so_far;
+          addCollisions(p, row, seen);
+          return trial.keep_sweeping(row, seen);
+        };
+      }
+      VerificationReport report = verifyToolpath(pocket.part.mesh, pocket.part.triangle_face, p.toolpath, p.tools,
+                                                 options, &state, {}, gated ? trial.resume_from : kNoSweeps);
+      const int end_row = report.stopped_at_row > 0 ? report.stopped_at_row : static_cast<int>(p.toolpath.size());
+      rows_swept += end_row - report.resumed_at_row;
+      addCollisions(p, end_row, report);
+      return report;
+    };
   }
   // The first setup's runs all kept, the last setup's second one left out, the plan as kept verified clean.
   void expectOnlyTheLastSetupsRunLeftOut(std::size_t dropped_before) {
@@ -431,8 +457,10 @@ class UselessRunsInTwoSetups : public ::testing::Test {
   PocketPlan pocket = pocketPlan();
   int first_setup = -1, last_setup = -1;
   long first_setup_ops = 0, last_setup_ops = 0;
+  std::vector<int> finding_setups;
   int verifications = 0;
-  PlanVerifier verifier;
+  long rows_swept = 0;
+  PlanVerifier verifier = verifierOf(false);
 };
 
 // When the simulation without both second runs finds a collision in the first setup only, that setup's useless run
@@ -452,6 +480,52 @@ TEST_F(UselessRunsInTwoSetups, AnEarlierSetupsDropIsPutBackBeforeALaterSetupsFin
   const std::size_t dropped_before = pocket.plan.roughing.dropped.size();
   dropUselessRoughing(pocket.plan, pocket.part, pocket.library, pocket.options, verifier);
   EXPECT_EQ(verifications, 2) << "without all; then with the first setup's put back";
+  expectOnlyTheLastSetupsRunLeftOut(dropped_before);
+}
+
+// The same rounds with the trials' checkpoints and gate, as planPart verifies: the first round stops where the first
+// setup finds more, the second resumes where its rows part from the plan as planned. The decisions are those of whole
+// sweeps (the cell's), for about half the rows: the gated rounds sweep each setup once, the whole ones both twice.
+TEST_F(UselessRunsInTwoSetups, RoundsStoppedAtTheFirstSetupThatFindsMoreDecideAsWholeSweeps) {
+  ASSERT_NO_FATAL_FAILURE(runTwice(true));
+  PlanResult whole = pocket.plan;
+  dropUselessRoughing(whole, pocket.part, pocket.library, pocket.options, verifier);
+  const long whole_rows = rows_swept;
+  EXPECT_EQ(verifications, 2);
+
+  // The plan as planned verified again keeping its checkpoints, as planPart's first verification does.
+  PlanResult& gated = pocket.plan;
+  VerifyOptions first = planVerifyOptions(pocket.part, gated, pocket.library, pocket.options);
+  first.checkpoints = pocket.options.resume_checkpoints;
+  gated.verification = verifyToolpath(pocket.part.mesh, pocket.part.triangle_face, gated.toolpath, gated.tools, first,
+                                      &gated.simulation);
+  ASSERT_FALSE(gated.simulation.checkpoints.empty());
+  verifications = 0;
+  rows_swept = 0;
+  std::vector<VerificationReport> rounds;
+  const std::size_t dropped_before = gated.roughing.dropped.size();
+  const PlanVerifier gated_verifier = verifierOf(true);
+  dropUselessRoughing(gated, pocket.part, pocket.library, pocket.options,
+                      [&](const PlanResult& p, VerificationState& state, const TrialSweep& trial) {
+                        rounds.push_back(gated_verifier(p, state, trial));
+                        return rounds.back();
+                      });
+  ASSERT_EQ(rounds.size(), 2u);
+  EXPECT_GT(rounds[0].stopped_at_row, 0) << "the first round stops after the first setup";
+  EXPECT_FALSE(rounds[0].passed());
+  EXPECT_GT(rounds[1].resumed_at_row, 0) << "the second resumes at the last setup";
+  EXPECT_EQ(rounds[1].stopped_at_row, 0);
+  EXPECT_LT(rows_swept, whole_rows * 3 / 4);
+
+  EXPECT_EQ(gated.useless.dropped, whole.useless.dropped);
+  EXPECT_EQ(gated.useless.kept, whole.useless.kept);
+  EXPECT_EQ(gated.useless.kept_why, whole.useless.kept_why);
+  ASSERT_EQ(gated.toolpath.size(), whole.toolpath.size());
+  for (std::size_t i = 0; i < whole.toolpath.size(); ++i) ASSERT_EQ(gated.toolpath[i].tip, whole.toolpath[i].tip);
+  EXPECT_EQ(gated.verification.collisions, whole.verification.collisions);
+  EXPECT_EQ(gated.verification.gouges, whole.verification.gouges);
+  EXPECT_DOUBLE_EQ(gated.verification.leftover_volume_mm3, whole.verification.leftover_volume_mm3);
+  EXPECT_DOUBLE_EQ(gated.verification.removed_volume_mm3, whole.verification.removed_volume_mm3);
   expectOnlyTheLastSetupsRunLeftOut(dropped_before);
 }
 

@@ -489,6 +489,42 @@ TEST(Simulation, AVerificationResumedFromACheckpointReportsWhatTheWholeSweepDoes
   EXPECT_EQ(verifyToolpath(kBlock, {}, changed, {longer}, o, nullptr, {}, first.checkpoints).resumed_at_row, 0);
 }
 
+// keep_sweeping is asked at each checkpoint with the findings so far, counted as the whole report counts them; a
+// false stops the sweep there, with the checkpoints so far kept for a later verification to resume from.
+TEST(Simulation, ASweepStoppedAtACheckpointReportsTheRowsBeforeItAndResumesFromThere) {
+  const Toolpath path = threeSetups(10);
+  const VerifyOptions o = options(0.25, 2);
+  const auto whole = verifyToolpath(kBlock, {}, path, {kFlat}, o);
+  ASSERT_GT(whole.gouges, 0) << "the first setup's dip";
+  VerifyOptions gated = o;
+  gated.checkpoints = 4;
+  std::vector<int> asked;
+  gated.keep_sweeping = [&](int row, const VerificationReport& so_far) {
+    asked.push_back(row);
+    EXPECT_EQ(so_far.gouges, whole.gouges) << "every gouge lies in the first setup, rows before " << row;
+    EXPECT_EQ(so_far.by_op.at(0).gouges, whole.by_op.at(0).gouges);
+    return row < 8;
+  };
+  VerificationState state;
+  const auto stopped = verifyToolpath(kBlock, {}, path, {kFlat}, gated, &state);
+  EXPECT_EQ(asked, (std::vector<int>{4, 8}));
+  EXPECT_EQ(stopped.stopped_at_row, 8);
+  EXPECT_FALSE(stopped.passed());
+  EXPECT_EQ(stopped.gouges, whole.gouges);
+  EXPECT_EQ(stopped.leftover_volume_mm3, 0) << "nothing measured";
+  ASSERT_EQ(state.checkpoints.size(), 2u);
+  EXPECT_EQ(state.checkpoints.back().row, 8);
+  const auto resumed = verifyToolpath(kBlock, {}, path, {kFlat}, o, nullptr, {}, state.checkpoints);
+  EXPECT_EQ(resumed.resumed_at_row, 8);
+  EXPECT_EQ(unclocked(resumed), unclocked(whole));
+
+  // A sweep the gate lets go on is the whole sweep.
+  gated.keep_sweeping = [](int, const VerificationReport&) { return true; };
+  const auto let_go = verifyToolpath(kBlock, {}, path, {kFlat}, gated);
+  EXPECT_EQ(let_go.stopped_at_row, 0);
+  EXPECT_EQ(unclocked(let_go), unclocked(whole));
+}
+
 TEST(Simulation, APathSweptInPiecesBetweenPlacementsIsSweptAsAWhole) {
   const Toolpath path = threeSetups(10);
   const DexelLattice lattice = DexelLattice::over(stockBox(boundingBox(kBlock), 2), 0.25);

@@ -205,7 +205,8 @@ PlanResult StageChain::run(const PlanPartGoal& goal, const std::string& part_id,
     reportProgress(progress, "verification", 0, "simulating " + std::to_string(plan.toolpath.size()) + " moves");
     // The picture is of the plan verified last: when the plan without its useless roughing is not kept (it found more
     // than the plan with it), the picture shows that plan's stock.
-    auto verify = [&](const PlanResult& p, VerificationState&) {
+    // The service sweeps the whole path: a trial's checkpoints and gate stay unused (the same decisions, slower).
+    auto verify = [&](const PlanResult& p, VerificationState&, const TrialSweep&) {
       VerifyToolpaths call;
       call.request.part_id = part_id;
       call.request.toolpath_record = toolpathRecord(p.toolpath, p.tools);
@@ -215,7 +216,8 @@ PlanResult StageChain::run(const PlanPartGoal& goal, const std::string& part_id,
       return verificationFromRecord(call.response.record);
     };
     VerificationState unused;
-    plan.verification = verify(plan, unused);
+    const std::vector<SweepCheckpoint> none;
+    plan.verification = verify(plan, unused, TrialSweep{none, 0, {}});
     plan.verified = true;
     timed("verification", start);
     if (options.drop_useless) {

@@ -34,9 +34,9 @@ struct PlanOptions {
   bool verify = true;          // simulate the whole path (verification.resolution 0: max(0.4, automatic, diagonal/300))
   bool drop_useless = true;    // with verify: roughing operations the simulation finds removing almost nothing are
                                // left out when the plan without them verifies as clean (useless_operations.h)
-  int resume_checkpoints = 8;  // with drop_useless: copies of the stock the first verification keeps, at setup
-                               // changes, for the trials without useless roughing to resume from
-                               // (VerifyOptions::checkpoints)
+  int resume_checkpoints = 32;  // with drop_useless: copies of the stock the first verification keeps, at setup
+                                // changes (every one, up to this many), for the trials without useless roughing to
+                                // resume from (VerifyOptions::checkpoints)
   VerifyOptions verification;
 };
 

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -21,6 +22,8 @@
 #include "art2part/tooling/toolpath.h"
 
 namespace art2part {
+
+struct VerificationReport;
 
 struct VerifyOptions {
   double resolution = 0;       // mm, lattice spacing; 0 = automatic (about 1.5 M rays, at least 0.1 mm)
@@ -37,8 +40,14 @@ struct VerifyOptions {
   // drilled bore's drill may be over its diameter, radially. Empty: none.
   std::vector<double> face_allowance;
   // Sweep checkpoints kept in VerificationState::checkpoints for a later verification to resume from (below): at
-  // most this many, at setup changes spread evenly over the path's rows, each a copy of the stock. 0: none.
+  // most this many, at setup changes spread evenly over the path's rows (at every one when there are no more of
+  // them), each a copy of the stock. 0: none.
   int checkpoints = 0;
+  // Asked at each checkpoint row (above) the sweep reaches, with the report of the rows before it (its gouges,
+  // collisions and by_op counted as the whole report counts them; nothing measured): false stops the sweep there
+  // (VerificationReport::stopped_at_row). Unset: the whole path. A trial that only needs to know where the first
+  // finding lies (useless_operations.h) stops there; the stage records do not carry it (a service sweeps it all).
+  std::function<bool(int row, const VerificationReport& so_far)> keep_sweeping;
 };
 
 struct GougeRecord {
@@ -116,8 +125,10 @@ struct VerificationReport {
 
   bool cancelled = false;  // the progress sink asked to stop: the findings of the moves swept so far, nothing left
                            // measured; never passed
+  int stopped_at_row = 0;  // VerifyOptions::keep_sweeping stopped the sweep before this row (0: it went on to the end):
+                           // the findings of the rows before it, nothing left measured; never passed
 
-  bool passed() const { return gouges == 0 && collisions == 0 && !cancelled; }
+  bool passed() const { return gouges == 0 && collisions == 0 && !cancelled && stopped_at_row == 0; }
 };
 
 // The sweep as it stood before a row where the tool is placed (a setup change), kept so that a later verification of a

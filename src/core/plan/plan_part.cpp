@@ -303,20 +303,23 @@ PlanResult planPart(const Part& part, const ToolLibrary& library, const PlanOpti
     if (options.drop_useless) first.checkpoints = options.resume_checkpoints;
     r.verification =
         verifyToolpath(part.mesh, part.triangle_face, r.toolpath, r.tools, first, &r.simulation, progress);
-    const std::vector<SweepCheckpoint> checkpoints = std::move(r.simulation.checkpoints);
-    r.simulation.checkpoints.clear();
     r.cancelled = r.verification.cancelled;
     r.verified = !r.cancelled;
     timed("verification", start);
     if (r.verified && options.drop_useless) {
       start = Clock::now();
-      dropUselessRoughing(r, part, library, options, [&](const PlanResult& p, VerificationState& state) {
+      const auto verify = [&](const PlanResult& p, VerificationState& state, const TrialSweep& trial) {
         stage("verification", 0, "simulating again without the roughing that removes almost nothing");
-        return verifyToolpath(part.mesh, part.triangle_face, p.toolpath, p.tools,
-                              planVerifyOptions(part, p, library, options), &state, progress, checkpoints);
-      });
+        VerifyOptions again = planVerifyOptions(part, p, library, options);
+        again.checkpoints = trial.checkpoints;
+        again.keep_sweeping = trial.keep_sweeping;
+        return verifyToolpath(part.mesh, part.triangle_face, p.toolpath, p.tools, again, &state, progress,
+                              trial.resume_from);
+      };
+      dropUselessRoughing(r, part, library, options, verify);
       if (r.useless.found > 0) timed("verification without useless roughing", start);
     }
+    r.simulation.checkpoints.clear();
     judgeFaces(r.verification, r.finishing);
   }
   r.timings.emplace_back("total", secondsSince(all));

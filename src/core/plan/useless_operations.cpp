@@ -13,8 +13,6 @@ namespace {
 
 // The leftover may differ from the sum by float rounding of the lattice's volumes only.
 constexpr double kVolumeSlack = 1e-9;
-// Verifications after the first without every useless operation: each puts some setups' back (dropUselessRoughing).
-constexpr int kKeepRounds = 3;
 
 double roughingRemoved(const PlanResult& plan) {
   double removed = 0;
@@ -56,6 +54,8 @@ DroppedOperation droppedBySimulation(const RoughingOperation& op, double removed
 std::string notAsClean(const VerificationReport& before, const VerificationReport& after, double dropped_removed,
                        const std::string& them = "them") {
   if (after.cancelled) return "the verification without " + them + " was cancelled";
+  if (after.stopped_at_row > 0)
+    return "the verification without " + them + " stopped at row " + std::to_string(after.stopped_at_row);
   if (after.gouges > before.gouges)
     return "without " + them + " the simulation finds " + std::to_string(after.gouges) + " gouges (" +
            std::to_string(before.gouges) + " with them)";
@@ -87,15 +87,47 @@ std::vector<int> uselessRoughing(const PlanResult& plan) {
 
 namespace {
 
-// The setups where `report` (of the combined `plan`) finds a gouge or a collision.
-std::set<int> setupsWithFindings(const PlanResult& plan, const VerificationReport& report) {
-  std::set<int> setups;
+// Gouges and collisions of one setup's operations.
+struct Findings {
+  int gouges = 0, collisions = 0;
+};
+
+// By setup, what `report` (of the combined `plan`) finds.
+std::map<int, Findings> findingsBySetup(const PlanResult& plan, const VerificationReport& report) {
+  std::map<int, Findings> by_setup;
   for (const PlanOperation& op : plan.operations) {
     const auto check = report.by_op.find(op.index);
-    if (check != report.by_op.end() && (check->second.gouges > 0 || check->second.collisions > 0))
-      setups.insert(op.setup);
+    if (check == report.by_op.end()) continue;
+    Findings& f = by_setup[op.setup];
+    f.gouges += check->second.gouges;
+    f.collisions += check->second.collisions;
   }
-  return setups;
+  return by_setup;
+}
+
+// The earliest setup where `report` finds more gouges or more collisions than `planned` (the plan as planned, by
+// setup); -1 when none.
+int firstWorseSetup(const PlanResult& plan, const VerificationReport& report, const std::map<int, Findings>& planned) {
+  for (const auto& [setup, found] : findingsBySetup(plan, report)) {
+    const auto before = planned.find(setup);
+    const Findings was = before == planned.end() ? Findings{} : before->second;
+    if (found.gouges > was.gouges || found.collisions > was.collisions) return setup;
+  }
+  return -1;
+}
+
+// Why the plan without `them` is not kept, when the setup `worse` decides: its findings with and without them.
+std::string worseIn(int worse, const std::map<int, Findings>& with, const std::map<int, Findings>& without,
+                    const std::string& them) {
+  const auto count = [](const std::map<int, Findings>& m, int setup) {
+    const auto it = m.find(setup);
+    return it == m.end() ? Findings{} : it->second;
+  };
+  const Findings a = count(with, worse), b = count(without, worse);
+  const bool gouges = b.gouges > a.gouges;
+  return "without " + them + " the simulation finds " + std::to_string(gouges ? b.gouges : b.collisions) +
+         (gouges ? " gouges" : " collisions") + " in setup " + std::to_string(worse) + " (" +
+         std::to_string(gouges ? a.gouges : a.collisions) + " with them)";
 }
 
 // Leaves `drop` (sorted sources) out of plan.roughing, recombines and verifies. The operations left out come back in
@@ -108,14 +140,14 @@ struct Trial {
 };
 
 void leaveOut(PlanResult& plan, const Part& part, const ToolLibrary& library, const PlanOptions& options,
-              const PlanVerifier& verify, Trial& trial) {
+              const PlanVerifier& verify, const TrialSweep& sweep, Trial& trial) {
   trial.held.resize(trial.drop.size());
   for (std::size_t i = trial.drop.size(); i-- > 0;) {  // last first, so the indices hold
     trial.held[i] = std::move(plan.roughing.operations[trial.drop[i]]);
     plan.roughing.operations.erase(plan.roughing.operations.begin() + trial.drop[i]);
   }
   combinePlan(plan, part, library, options);
-  trial.report = verify(plan, trial.state);
+  trial.report = verify(plan, trial.state, sweep);
 }
 
 void putBack(PlanResult& plan, Trial& trial) {
@@ -130,6 +162,18 @@ void keep(PlanResult& plan, Trial& trial, const std::map<int, double>& removed, 
     plan.roughing.dropped.push_back(droppedBySimulation(trial.held[i], removed.at(trial.drop[i]), roughing_removed));
   plan.verification = std::move(trial.report);
   plan.simulation = std::move(trial.state);
+  plan.simulation.checkpoints.clear();
+}
+
+// The setup whose useless operations go back when `worse` finds more: its own when some of `drop` are its, else the
+// latest setup before it with some; -1 when none.
+int setupToPutBack(int worse, const std::vector<int>& drop, const std::map<int, int>& setup_of) {
+  int back = -1;
+  for (int source : drop) {
+    const int k = setup_of.at(source);
+    if (k <= worse) back = std::max(back, k);
+  }
+  return back;
 }
 
 }  // namespace
@@ -137,6 +181,10 @@ void keep(PlanResult& plan, Trial& trial, const std::map<int, double>& removed, 
 void dropUselessRoughing(PlanResult& plan, const Part& part, const ToolLibrary& library, const PlanOptions& options,
                          const PlanVerifier& verify) {
   plan.useless = UselessRoughing{};
+  // The sweeps to resume from: the first verification's, then also the last round's.
+  std::vector<SweepCheckpoint> sweeps = std::move(plan.simulation.checkpoints);
+  plan.simulation.checkpoints.clear();
+  const std::size_t first_sweep = sweeps.size();
   const std::vector<int> useless = uselessRoughing(plan);
   plan.useless.found = static_cast<int>(useless.size());
   if (useless.empty()) return;
@@ -144,53 +192,58 @@ void dropUselessRoughing(PlanResult& plan, const Part& part, const ToolLibrary& 
   const double roughing_removed = roughingRemoved(plan);
   std::map<int, double> removed;  // by source
   std::map<int, int> setup;       // by source
+  std::set<int> setups;           // with useless operations
   for (int source : useless) {
     removed[source] = removedBy(plan, source);
     setup[source] = plan.roughing.operations[source].setup;
+    setups.insert(setup[source]);
   }
   auto removedByAll = [&](const std::vector<int>& sources) {
     double sum = 0;
     for (int source : sources) sum += removed[source];
     return sum;
   };
-  Trial all{useless, {}, {}, {}};
-  leaveOut(plan, part, library, options, verify, all);
-  const std::string why = notAsClean(plan.verification, all.report, removedByAll(useless));
-  if (why.empty()) return keep(plan, all, removed, roughing_removed);
-  const std::string why_all = notAsClean(plan.verification, all.report, removedByAll(useless), "all of them");
-  std::set<int> troubled = setupsWithFindings(plan, all.report);
-  putBack(plan, all);
-  // Later rounds: put the useless operations of setups with findings back, the earliest such setup first (setups are
-  // cut in sequence: findings in a later setup may come from the stock an earlier one's drop left), the last round
-  // every setup with findings.
+  const std::map<int, Findings> planned = findingsBySetup(plan, plan.verification);
+  const int setup_changes = static_cast<int>(plan.setups.setups.size());  // a checkpoint at each of them
+  std::string why;  // why the plan without all of them is not kept
   std::set<int> kept_setups;
-  for (int round = 1; round <= kKeepRounds && !troubled.empty() && !all.report.cancelled; ++round) {
-    if (round == kKeepRounds) kept_setups.insert(troubled.begin(), troubled.end());
-    else kept_setups.insert(*troubled.begin());
-    Trial some;
+  bool cancelled = false;
+  for (std::size_t round = 0; round < setups.size() && !cancelled; ++round) {
+    Trial trial;
     for (int source : useless)
-      if (!kept_setups.count(setup[source])) some.drop.push_back(source);
-    if (some.drop.empty()) break;
-    leaveOut(plan, part, library, options, verify, some);
-    if (notAsClean(plan.verification, some.report, removedByAll(some.drop)).empty()) {
-      std::string listed;
-      for (int k : kept_setups) listed += (listed.empty() ? "" : ", ") + std::to_string(k);
-      plan.useless.kept = static_cast<int>(useless.size() - some.drop.size());
-      plan.useless.kept_why = "those of setups " + listed + " kept: " + why_all;
-      return keep(plan, some, removed, roughing_removed);
+      if (!kept_setups.count(setup[source])) trial.drop.push_back(source);
+    if (trial.drop.empty()) break;
+    const TrialSweep sweep{sweeps, setup_changes, [&](int, const VerificationReport& so_far) {
+                             return firstWorseSetup(plan, so_far, planned) < 0;
+                           }};
+    leaveOut(plan, part, library, options, verify, sweep, trial);
+    cancelled = trial.report.cancelled;
+    const int worse = cancelled ? -1 : firstWorseSetup(plan, trial.report, planned);
+    const std::string them = round == 0 ? "all of them" : "them";
+    const std::string not_clean =
+        cancelled    ? "the verification without " + them + " was cancelled"
+        : worse >= 0 ? worseIn(worse, planned, findingsBySetup(plan, trial.report), them)
+                     : notAsClean(plan.verification, trial.report, removedByAll(trial.drop), them);
+    if (not_clean.empty()) {
+      if (!kept_setups.empty()) {
+        std::string listed;
+        for (int k : kept_setups) listed += (listed.empty() ? "" : ", ") + std::to_string(k);
+        plan.useless.kept = static_cast<int>(useless.size() - trial.drop.size());
+        plan.useless.kept_why = "those of setups " + listed + " kept: " + why;
+      }
+      return keep(plan, trial, removed, roughing_removed);
     }
-    if (some.report.cancelled) {
-      all.report.cancelled = true;
-    } else {
-      for (int k : setupsWithFindings(plan, some.report))
-        if (!kept_setups.count(k)) troubled.insert(k);
-      for (int k : kept_setups) troubled.erase(k);
-    }
-    putBack(plan, some);
+    if (round == 0) why = not_clean;
+    const int back = worse >= 0 ? setupToPutBack(worse, trial.drop, setup) : -1;
+    putBack(plan, trial);
+    if (back < 0) break;
+    kept_setups.insert(back);
+    sweeps.resize(first_sweep);  // the last round's replace the round's before
+    for (SweepCheckpoint& c : trial.state.checkpoints) sweeps.push_back(std::move(c));
   }
   plan.useless.kept = plan.useless.found;
   plan.useless.kept_why = why;
-  plan.cancelled = plan.cancelled || all.report.cancelled;
+  plan.cancelled = plan.cancelled || cancelled;
   combinePlan(plan, part, library, options);
 }
 

@@ -94,6 +94,7 @@ std::vector<int> checkpointRows(const Toolpath& path, int count) {
   std::vector<int> changes;  // rows where the setup changes
   for (std::size_t r = 1; r < path.size(); ++r)
     if (path[r].setup != path[r - 1].setup) changes.push_back(static_cast<int>(r));
+  if (static_cast<int>(changes.size()) <= count) return changes;
   std::vector<int> rows;
   for (int k = 1; k <= count && !changes.empty(); ++k) {
     const double share = static_cast<double>(path.size()) * k / (count + 1);

@@ -23,7 +23,7 @@ std::vector<std::uint64_t> prefixKeys(const Toolpath& path, const std::vector<in
                                       const std::vector<Tool>& tools);
 
 // Up to `count` rows where the setup changes, spread evenly over the path's rows (each the last such row at or before
-// its share of the path), ascending, none repeated.
+// its share of the path), ascending, none repeated; every such row when there are at most `count`.
 std::vector<int> checkpointRows(const Toolpath& path, int count);
 
 // The latest of `from` whose key matches `path`'s rows before it with `inputs` and whose row places the tool in

@@ -123,6 +123,16 @@ void listLeftover(VerificationReport& r, LeftoverAnalysis leftover, int max_list
   if (static_cast<int>(r.faces.size()) > max_listed) r.faces.resize(max_listed);
 }
 
+// What VerifyOptions::keep_sweeping is shown: the findings of the rows swept so far, counted as the report counts them.
+VerificationReport findingsSoFar(const SweepResult& sweep, const Toolpath& path, const VerifyOptions& options,
+                                 const std::vector<int>& triangle_face, const PartDistance& distance) {
+  VerificationReport so_far;
+  so_far.tolerance_mm = options.tolerance;
+  listFindings(so_far, sweep.findings, path, options.tolerance, options.face_allowance, triangle_face, distance,
+               options.max_listed);
+  return so_far;
+}
+
 }  // namespace
 
 double automaticResolution(const Box& box) {
@@ -203,11 +213,17 @@ VerificationReport verifyToolpath(const Mesh& part_mesh, const std::vector<int>&
     sweep_options.end_row = ends[k];
     sweep_checkpoints::addSweep(sweep, sweepToolpath(stock, part_dexels, distance, path, solids, sweep_options,
                                                      sweeping));
-    if (state && k + 1 < ends.size() && !sweep.cancelled)
-      kept.push_back({ends[k], keys[k], stock, sweep.findings, sweep.by_op, sweep.poses});
+    if (k + 1 == ends.size() || sweep.cancelled) continue;
+    if (state) kept.push_back({ends[k], keys[k], stock, sweep.findings, sweep.by_op, sweep.poses});
+    if (options.keep_sweeping &&
+        !options.keep_sweeping(ends[k], findingsSoFar(sweep, path, options, triangle_face, distance))) {
+      r.stopped_at_row = ends[k];
+      break;
+    }
   }
-  r.cancelled = sweep.cancelled ||
-                !reportProgress(progress, "verification", kSweepEnd, "measuring what is left of the stock");
+  const bool stopped = r.stopped_at_row > 0;
+  r.cancelled = sweep.cancelled || (!stopped && !reportProgress(progress, "verification", kSweepEnd,
+                                                                "measuring what is left of the stock"));
   r.poses = sweep.poses;
   for (const CutterLocation& row : path) r.by_op[row.op];
   for (const auto& [op, swept] : sweep.by_op) r.by_op[op].swept = swept;
@@ -218,7 +234,8 @@ VerificationReport verifyToolpath(const Mesh& part_mesh, const std::vector<int>&
 
   r.remaining_volume_mm3 = stock.volume();
   r.removed_volume_mm3 = r.stock_volume_mm3 - r.remaining_volume_mm3;
-  if (r.cancelled) {
+  if (r.cancelled || stopped) {
+    if (state) state->checkpoints = std::move(kept);
     r.seconds_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return r;
   }
