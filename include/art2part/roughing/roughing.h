@@ -194,6 +194,8 @@ struct RoughingStart {
                                            // step-down (a reach pass, RoughingOptions::Rest::reach)
   SetupShadows* shadows = nullptr;         // the part's shadows in the setup's frame, shared by the setup's
                                            // operations (from the part roughed, machiningSolid); none: its own
+  double least_removal_mm3 = 0;            // a pass planned to remove less (and something) is not written out:
+                                           // RoughingPass::under_least_removal (Rest::least_removal_share)
 };
 
 // One operation and the stock it leaves.
@@ -201,6 +203,9 @@ struct RoughingPass {
   RoughingOperation operation;
   std::vector<SlabState> left;  // the stock after it, slab by slab from the top (a rest pass's `previous`)
   bool cancelled = false;       // the progress sink asked to stop: the levels planned so far
+  // Planned to remove less than RoughingStart::least_removal_mm3: the operation's figures (planned removal, levels,
+  // plan time) without its path, which would be written for nothing.
+  bool under_least_removal = false;
 };
 
 // One operation: `tool` clears the stock of one setup top-down, level by level, restricted to `start`. Reports

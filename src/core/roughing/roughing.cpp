@@ -470,9 +470,17 @@ RoughingPass roughSetup(const Part& part, const Setup& setup, int setup_index, c
     level.rings = static_cast<int>(clear.centre.size());
     slabs[index] = std::move(slab);
   });
+  bool centres = false;
   for (std::size_t index = 0; index < n; ++index) {
     op.planned_removal_mm3 += removal[index];
+    centres = centres || !regionEmpty(drafts[index].clear.centre);
     planned.levels.push_back(std::move(drafts[index].clear));
+  }
+  if (centres && op.planned_removal_mm3 < start_from.least_removal_mm3) {
+    pass.under_least_removal = true;
+    op.levels = std::move(levels);
+    op.plan_seconds = secondsSince(start);
+    return pass;
   }
   OperationMovesOptions moves_options;
   moves_options.clearing = clearing;

@@ -285,6 +285,7 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
       after.shadows = &shadows;
       after.step_up = pass == -2;
       after.reach = pass == -1;
+      after.least_removal_mm3 = options.rest.least_removal_share * planned_total;
       RoughingPass op = roughSetup(part, setup, k, *rest, options, after, within);
       levels_done += static_cast<long>(op.operation.levels.size());
       if (op.cancelled) {
@@ -292,13 +293,14 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
         break;
       }
       if (pass >= 0) previous = rest;  // the rest tools halve from the main tool, not from the reach tool
+      const double least = options.rest.least_removal_share * planned_total;
+      if (op.under_least_removal || (cuts(op.operation) && op.operation.planned_removal_mm3 < least)) {
+        plan.dropped.push_back(droppedPass(op.operation, options.rest.least_removal_share, planned_total));
+        continue;  // the next rest tool starts from what this one started from
+      }
       if (!cuts(op.operation)) {
         left = std::move(op.left);
         continue;
-      }
-      if (op.operation.planned_removal_mm3 < options.rest.least_removal_share * planned_total) {
-        plan.dropped.push_back(droppedPass(op.operation, options.rest.least_removal_share, planned_total));
-        continue;  // the next rest tool starts from what this one started from
       }
       if (pass == -1) {
         const std::string slow = slowReach(op.operation, *rest, options.rest.least_reach_rate_share);
