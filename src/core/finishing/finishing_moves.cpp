@@ -109,29 +109,64 @@ void cutWalls(const std::vector<WallStretch>& walls, double lead, double reach, 
   if (by_shortened.secondsToRetract(rapid_mm_min) < out.secondsToRetract(rapid_mm_min)) out = std::move(by_shortened);
 }
 
+namespace {
+
+// Where a floor piece's moves enter it (the first at its level) and leave it (the last): or-opt's model of the piece.
+TourStop floorStop(const std::vector<ClearingPoint>& moves, double z) {
+  TourStop stop;
+  if (moves.empty()) return stop;
+  stop.entry = moves.front().tip;
+  for (const ClearingPoint& m : moves)
+    if (std::abs(m.tip.z() - z) < 1e-6) {
+      stop.entry = m.tip;
+      break;
+    }
+  stop.exit = moves.back().tip;
+  return stop;
+}
+
+}  // namespace
+
 void cutFloors(const std::vector<FloorLevel>& floors, const ClearingOptions& clearing, const DescentLimit& limit,
                double reach, double rapid_mm_min, PathWriter& out) {
   const double shift = 2 * clearing.tool_radius;
   std::vector<ClearingLevel> levels;
   levels.reserve(floors.size());
   for (const FloorLevel& f : floors) levels.push_back(f.clear);
-  PathWriter by_levels = out;
+  const PathWriter before = out;
   PieceSchedule schedule(levels, reach);
   const std::vector<LevelPiece>& pieces = schedule.pieces();
+  // A piece's clearing does not depend on the order: each is cleared once and written in every order tried.
+  std::vector<std::vector<ClearingPoint>> moves(pieces.size());
+  std::vector<TourStop> stops(pieces.size());
+  std::vector<std::size_t> nearest;
   bool as_levels = pieces.size() == levels.size();  // one piece per level, cut in level order so far
   std::optional<Point2> at;
-  std::size_t taken = 0;
-  for (std::size_t i = schedule.next(at); i < pieces.size(); i = schedule.next(at), ++taken) {
-    as_levels = as_levels && i == taken && pieces[i].level == i;
+  for (std::size_t i = schedule.next(at); i < pieces.size(); i = schedule.next(at)) {
+    as_levels = as_levels && i == nearest.size() && pieces[i].level == i;
+    const FloorLevel& floor = floors[pieces[i].level];
     ClearingLevel level = levels[pieces[i].level];
     level.centre = pieces[i].rings;
-    out.clearing(safeDescents(clearLevel(level, clearing), *floors[pieces[i].level].safe, limit, shift));
+    moves[i] = safeDescents(clearLevel(level, clearing), *floor.safe, limit, shift);
+    stops[i] = floorStop(moves[i], level.z);
+    out.clearing(moves[i]);
+    nearest.push_back(i);
     at = out.at().head<2>();
   }
+  auto quicker = [rapid_mm_min, &out](PathWriter&& other) {
+    if (other.secondsToRetract(rapid_mm_min) < out.secondsToRetract(rapid_mm_min)) out = std::move(other);
+  };
+  const std::vector<std::size_t> shortened = shortenedOrder(stops, nearest, schedule.waitsFor());
+  if (shortened != nearest) {
+    PathWriter by_shortened = before;
+    for (std::size_t i : shortened) by_shortened.clearing(moves[i]);
+    quicker(std::move(by_shortened));
+  }
   if (as_levels) return;  // the same clearing as level after level: no need to write that too
+  PathWriter by_levels = before;
   for (const FloorLevel& f : floors)
     by_levels.clearing(safeDescents(clearLevel(f.clear, clearing), *f.safe, limit, shift));
-  if (by_levels.secondsToRetract(rapid_mm_min) < out.secondsToRetract(rapid_mm_min)) out = std::move(by_levels);
+  quicker(std::move(by_levels));
 }
 
 }  // namespace art2part::finishing_detail

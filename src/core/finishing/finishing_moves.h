@@ -224,11 +224,13 @@ struct FloorLevel {
 };
 // Clears the floors piece by piece (the connected pieces of every level's centre, PieceSchedule with the level index
 // as the depth), the piece nearest the tool first, each only once every piece of a level above within `reach` of it
-// is cut: the walls' rule (cutWalls). Each piece as clearLevel clears it, its descents moved by safeDescents. Kept
-// where its moves take less time than level after level (clearLevel over each level's whole centre), feeds at the
-// tool's rate and rapids at `rapid_mm_min`: the links differ (a descent where no rapid may come is a feed; Ailette's
-// flat1 fed 78 mm more down piece by piece). Why: level after level, the face mill crossed the part between the
-// floors at both ends at every level.
+// is cut: the walls' rule (cutWalls); that order then shortened by or-opt under the same rule (ordered_tour.h: a
+// piece entered at its first move at its level and left at its last, whatever the order), kept where quicker as
+// written. Each piece as clearLevel clears it, its descents moved by safeDescents. Kept where its moves take less
+// time than level after level (clearLevel over each level's whole centre), feeds at the tool's rate and rapids at
+// `rapid_mm_min`: the links differ (a descent where no rapid may come is a feed; Ailette's flat1 fed 78 mm more down
+// piece by piece). Why: level after level, the face mill crossed the part between the floors at both ends at every
+// level; nearest first, it still left pieces behind to come back for.
 void cutFloors(const std::vector<FloorLevel>& floors, const ClearingOptions& clearing, const DescentLimit& limit,
                double reach, double rapid_mm_min, PathWriter& out);
 
