@@ -220,10 +220,9 @@ void dropUselessRoughing(PlanResult& plan, const Part& part, const ToolLibrary& 
     cancelled = trial.report.cancelled;
     const int worse = cancelled ? -1 : firstWorseSetup(plan, trial.report, planned);
     const std::string them = round == 0 ? "all of them" : "them";
-    const std::string not_clean =
-        cancelled    ? "the verification without " + them + " was cancelled"
-        : worse >= 0 ? worseIn(worse, planned, findingsBySetup(plan, trial.report), them)
-                     : notAsClean(plan.verification, trial.report, removedByAll(trial.drop), them);
+    const std::string not_clean = worse >= 0
+                                      ? worseIn(worse, planned, findingsBySetup(plan, trial.report), them)
+                                      : notAsClean(plan.verification, trial.report, removedByAll(trial.drop), them);
     if (not_clean.empty()) {
       if (!kept_setups.empty()) {
         std::string listed;

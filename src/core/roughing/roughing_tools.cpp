@@ -293,8 +293,7 @@ RoughingPlan planRoughing(const Part& given, const SetupPlan& setups, const Tool
         break;
       }
       if (pass >= 0) previous = rest;  // the rest tools halve from the main tool, not from the reach tool
-      const double least = options.rest.least_removal_share * planned_total;
-      if (op.under_least_removal || (cuts(op.operation) && op.operation.planned_removal_mm3 < least)) {
+      if (op.under_least_removal) {
         plan.dropped.push_back(droppedPass(op.operation, options.rest.least_removal_share, planned_total));
         continue;  // the next rest tool starts from what this one started from
       }
