@@ -132,9 +132,15 @@ TEST(EngagementClearing, ClosedPocketStartsWithAHelix) {
   EXPECT_GT(m.figures.climb_mm, 20 * m.figures.conventional_mm);
   EXPECT_TRUE(m.inside);
   EXPECT_EQ(m.left, 0);
-  // The first fronts round the helix are whole rings: each entered at its vertex nearest the tool, not at its first
-  // (687 mm of rapids for 5,123 mm of feed; from the first vertex 823 for 5,132).
-  EXPECT_LT(m.rapid_mm, 0.15 * m.feed_mm);
+  // The moves' time at the test's rates (feed 1,000, rapid 10,000 mm/min): the first fronts round the helix are whole
+  // rings, each entered at its vertex nearest the tool, not at its first (5.19 min: 5,123 mm of feed and 687 of
+  // rapid; from the first vertex 5.21); the stretches start where the front leaves the ground cleared before, not at
+  // the far end of a wall edge that ground shares (4.93 min: 4,825 mm of feed, 1,081 of rapid, the gaps along the
+  // walls hopped over where that is quicker).
+  const ClearingOptions rates = optionsOf();
+  const double minutes = m.feed_mm / rates.feed_mm_min + m.rapid_mm / rates.rapid_mm_min;
+  std::printf("pocket: %.0f mm of feed, %.0f of rapid, %.2f min\n", m.feed_mm, m.rapid_mm, minutes);
+  EXPECT_LT(minutes, 5.0);
 }
 
 // A piece of the centre region with no air and too thin for a helix (a channel 0.08 mm wide) is still cut: a lap
@@ -173,4 +179,43 @@ TEST(EngagementClearing, RandomSlabsAreClearedUnderTheAngle) {
     EXPECT_EQ(m.left, 0) << "trial " << trial;
     EXPECT_LE(m.figures.over_mm, m.stats.unbounded_mm + 0.01 * m.figures.cut_mm) << "trial " << trial;
   }
+}
+
+// A strip open to air at both short ends only. Two faults showed there: the fronts grew from both ends at once, and
+// the tool crossed the strip between them at every front (featuretype's first level cut by engagement: three 143 mm
+// crossings; on this strip 90), and a front edge running along a wall from ground cleared before (the union merges a
+// wall's collinear vertices into one edge) counted as moved whole, so the tool fed along the wall over ground cut
+// before, front after front (6,206 of 13,831 mm of feed ran along the walls; 8,440 mm cut in all now).
+TEST(EngagementClearing, StripOpenAtBothEndsIsClearedFromOneEndWithoutFeedingAlongItsWalls) {
+  const double r = 5;
+  Slab slab = enclosedSlab(regionFromPolygons({rectangle(0, -20, 150, 50)}),
+                           regionFromPolygons({rectangle(-10, 0, 160, 30)}), r);
+  slab.level.air = subtract(slab.level.centre, slab.level.stock_reach);
+  EngagementOptions engagement;
+  engagement.tool_radius = r;
+  const std::vector<ClearingPoint> moves = clearLevelByEngagement(slab.level, optionsOf(), engagement);
+  int crossings = 0;        // moves at any height spanning more than half the strip
+  double along_walls = 0;   // feed at the level with both ends within 0.2 mm of a long wall (y = 0 or y = 30)
+  for (std::size_t i = 1; i < moves.size(); ++i) {
+    const Eigen::Vector3d &a = moves[i - 1].tip, &b = moves[i].tip;
+    if ((b.head<2>() - a.head<2>()).norm() > 85) ++crossings;
+    const auto onWall = [](double y) { return std::abs(y) < 0.2 || std::abs(y - 30) < 0.2; };
+    if (moves[i].move == ClearingMove::Feed && a.z() == slab.level.z && b.z() == slab.level.z && onWall(a.y()) &&
+        onWall(b.y()) && std::abs(a.y() - b.y()) < 0.4)
+      along_walls += (b - a).norm();
+  }
+  const Measured m = clearAndMeasure(slab, r, 40);
+  std::printf("strip: %.0f mm cut (%.0f along the walls), %.0f mm rapid, %d crossings, %.1f mm over the angle "
+              "(worst %.0f deg), %.1f mm unbounded, %ld left\n",
+              m.feed_mm, along_walls, m.rapid_mm, crossings, m.figures.over_mm, m.figures.worst_deg,
+              m.stats.unbounded_mm, m.left);
+  EXPECT_LE(crossings, 1);
+  EXPECT_LT(along_walls, 0.1 * m.feed_mm);
+  EXPECT_TRUE(m.inside);
+  EXPECT_EQ(m.left, 0);
+  // Not the 1 % the other slabs keep: the fronts fan out from the corners where the air meets the walls (each new
+  // front's fillet passes through the corner), 2.2 % of the cut over the angle, by at most 6 degrees. A known
+  // exception (engagement_clearing.h), held here so that it does not grow.
+  EXPECT_LE(m.figures.over_mm, m.stats.unbounded_mm + 0.025 * m.figures.cut_mm);
+  EXPECT_LE(m.figures.worst_deg, 47.0);
 }

@@ -14,9 +14,11 @@
 // gaps in it narrower than 2 rho. When the fronts stop growing, rho is halved, down to a fifth of the tool radius
 // (each phase with its own band a(rho)), then dropped: the last fronts, into corners and channels, have no engagement
 // bound (ClearingStats::unbounded_mm). The connected pieces of material are cleared one after the other, nearest
-// first.
+// first; where a piece touches several pieces of cleared ground (a slot open at both ends), the fronts grow from the
+// one nearest the tool and take the others in as they come within a band of them (one crossing, not one per front).
 //
-// The moves: the new stretches of each front, material on the tool's right (climb milling with the spindle turning
+// The moves: the new stretches of each front (from where an edge leaves the ground cleared before, not from the far
+// end of a long edge along a wall that ground shares), material on the tool's right (climb milling with the spindle turning
 // clockwise), the nearest first (a front that moved whole from its vertex nearest the tool), going on round a front
 // along the stretches that did not move (they lie on cleared ground) where that is quicker than a hop; else a hop over
 // the slab, a rapid down a column of cleared ground 0.05 mm inside it to the safe height, a plunge and a short feed
@@ -26,7 +28,8 @@
 // meets material over the angle theta with (rho + r - a)^2 = rho^2 + r^2 + 2 rho r cos(theta) (a straight path is
 // rho -> infinity: a = r (1 - cos theta)); engagementStepover solves it for a. Measured by an independent sweep in
 // test_engagement_clearing.cpp: over the angle (plus the sweep's own error) on under 1 % of the cut beyond the last
-// phase's length.
+// phase's length; the known exception, a strip open only at its ends, 2.2 % by at most 6 degrees: the fronts fan
+// out from the corners where the air meets the walls (each front's fillet of radius rho passes through the corner).
 #pragma once
 
 #include <vector>

@@ -23,6 +23,7 @@ constexpr int kHelixSides = 24;
 constexpr int kMaxFronts = 20000;
 constexpr double kClosingWindowMm = 1.0;     // beyond 2 rho round a front's growth: the material its closing needs
 constexpr double kLeastCornerShare = 0.2;    // the last bounded phase's corner radius, in tool radii (at least)
+constexpr double kTransitionStep = 0.5;      // mm: edges longer than this are cut where they leave the old front
 
 Region disc(const Point2& centre, double radius) {
   Ring ring;
@@ -67,12 +68,50 @@ struct Stretch {
   Polyline gap;          // the ring from this stretch's end to the next one's start: on the old front
 };
 
+// The point of segment a-b where it leaves `old` for good, going from a to b (a in old, b not): the last old point
+// found scanning back from b in steps of kTransitionStep, then bisected to 1e-3 mm.
+Point2 leavesOld(const RegionLocator& old, const Point2& a, const Point2& b) {
+  const double length = (b - a).norm();
+  double out = 1, in = 0;  // along a-b: out is known outside, in inside
+  for (double t = 1 - kTransitionStep / length; t > 0; t -= kTransitionStep / length) {
+    if (old.contains(a + t * (b - a))) {
+      in = t;
+      break;
+    }
+    out = t;
+  }
+  while ((out - in) * length > 1e-3) {
+    const double t = 0.5 * (in + out);
+    (old.contains(a + t * (b - a)) ? in : out) = t;
+  }
+  return a + in * (b - a);
+}
+
+// The ring with a vertex added where an edge longer than kTransitionStep runs from old ground out of it or back:
+// else a long edge with one end on old ground (a wall edge whose collinear vertices the union merged) counted as
+// moved whole, and the tool fed along it over ground cut before (the whole length of a strip, front after front).
+Ring withTransitions(const Ring& ring, const RegionLocator& old) {
+  const std::size_t n = ring.size();
+  std::vector<bool> in_old(n);
+  for (std::size_t i = 0; i < n; ++i) in_old[i] = old.contains(ring[i]);
+  Ring refined;
+  refined.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t j = (i + 1) % n;
+    refined.push_back(ring[i]);
+    if (in_old[i] == in_old[j] || (ring[j] - ring[i]).norm() <= kTransitionStep) continue;
+    refined.push_back(in_old[i] ? leavesOld(old, ring[i], ring[j]) : leavesOld(old, ring[j], ring[i]));
+  }
+  return refined;
+}
+
 // The stretches of `next`'s rings that moved beyond `before_grown` (the ground cleared before, grown by
 // kOnOldFront), material on their right (a region's rings have the region on their left): climb milling.
 std::vector<Stretch> newStretches(const Region& next, const Region& before_grown) {
   const RegionLocator old(before_grown);
   std::vector<Stretch> stretches;
-  for (const Ring& ring : regionRings(next)) {
+  for (const Ring& next_ring : regionRings(next)) {
+    const Ring ring = withTransitions(next_ring, old);
     const std::size_t n = ring.size();
     if (n < 3) continue;
     std::vector<bool> moved(n);
@@ -174,10 +213,13 @@ class FrontCutter {
     while (!waiting_.empty()) {
       const std::size_t j = nearestWaiting();
       area_ = unite(waiting_[j], cleared_);
+      holdFarGround(waiting_[j]);
       waiting_.erase(waiting_.begin() + static_cast<std::ptrdiff_t>(j));
       for (double radius = rho; radius >= kLeastCornerShare * r; radius *= 0.5)
         grow(engagementStepover(r, radius, engagement_.max_engagement_deg), radius, false);
       grow(engagementStepover(r, 0, engagement_.max_engagement_deg), 0, true);
+      for (const Region& ground : held_) cleared_ = unite(cleared_, ground);
+      held_.clear();
     }
     if (!options_.stay_down) writer_.retract();
     return writer_.take();
@@ -197,6 +239,40 @@ class FrontCutter {
     for (std::size_t j = 1; j < waiting_.size(); ++j)
       if (distanceTo(waiting_[j]) < distanceTo(waiting_[best])) best = j;
     return best;
+  }
+
+  // Of the connected pieces of cleared ground the piece of material `piece` touches, all but the one nearest the
+  // tool (the largest before the first move) are held back: the fronts grow from that one alone and take each held
+  // piece in when they come within a band of it (absorbHeldGround). Fronts grown from every piece at once meet the
+  // material at both ends of a strip, and the tool crossed the strip at every front.
+  void holdFarGround(const Region& piece) {
+    const Region touching = offsetRegion(piece, kOnOldFront, kFrontArcTolerance);
+    std::vector<Region> grounds;
+    for (RegionPiece& ground : regionPieces(cleared_))
+      if (!regionEmpty(intersect(ground.rings, touching))) grounds.push_back(std::move(ground.rings));
+    if (grounds.size() < 2) return;
+    std::size_t keep = 0;
+    for (std::size_t i = 1; i < grounds.size(); ++i) {
+      const bool nearer = writer_.placed() ? distanceTo(grounds[i]) < distanceTo(grounds[keep])
+                                           : regionArea(grounds[i]) > regionArea(grounds[keep]);
+      if (nearer) keep = i;
+    }
+    for (std::size_t i = 0; i < grounds.size(); ++i)
+      if (i != keep) cleared_ = subtract(cleared_, grounds[i]), held_.push_back(std::move(grounds[i]));
+  }
+
+  // The held pieces of ground within `band` of the cleared ground join it.
+  void absorbHeldGround(double band) {
+    if (held_.empty()) return;
+    const Region near = offsetRegion(cleared_, band + kOnOldFront, kFrontArcTolerance);
+    for (std::size_t i = 0; i < held_.size();) {
+      if (regionEmpty(intersect(held_[i], near))) {
+        ++i;
+        continue;
+      }
+      cleared_ = unite(cleared_, held_[i]);
+      held_.erase(held_.begin() + static_cast<std::ptrdiff_t>(i));
+    }
   }
 
   // A helix at the deepest point of every piece of the centre region with no cleared ground in it.
@@ -233,6 +309,7 @@ class FrontCutter {
   void grow(double a, double rho, bool unbounded) {
     double reached_mm2 = regionArea(cleared_);
     for (int k = 0; k < kMaxFronts && !regionEmpty(cleared_); ++k) {
+      absorbHeldGround(a);
       Region next = intersect(offsetRegion(cleared_, a, kFrontArcTolerance), area_);
       if (rho > 0) {
         const Region window = offsetRegion(subtract(next, cleared_), 2 * rho + kClosingWindowMm, kFrontArcTolerance);
@@ -331,6 +408,7 @@ class FrontCutter {
   Region solid_;    // outside the centre region, where the disc would meet stock: material for the closing
   Region area_;     // the piece of material being cleared, with the cleared ground
   std::vector<Region> waiting_;  // pieces of material still to clear (connected pieces at the start)
+  std::vector<Region> held_;     // pieces of cleared ground the fronts do not grow from yet (holdFarGround)
   double band_ = 0;  // the band the fronts of this phase take
   Region reach_;    // cleared_ grown by kOnOldFront: what did not move, and where links along the level stay
   Region cleared_;  // centres whose disc meets no material left at the level: the ground cleared
