@@ -247,7 +247,9 @@ struct WallStretch {
 // wall band by band before crossing to the next; that order then shortened by or-opt under the same rule
 // (ordered_tour.h: each stretch is entered and left at its ends whatever the order), kept where the moves it writes
 // take less time (feed at the tool's rate, rapids at `rapid_mm_min`). Why: level after level, the tool crossed the
-// part between walls at every level.
+// part between walls at every level. Closed stretches (whole rings) start at their first vertex or, where that is
+// quicker as written, each at its vertex nearest the tool where the order first reaches it (among those with a
+// lead-in in the level's allowed region).
 void cutWalls(const std::vector<WallStretch>& walls, double lead, double reach, const DescentLimit& limit,
               double rapid_mm_min, PathWriter& out);
 
