@@ -87,20 +87,30 @@ Point2 leavesOld(const RegionLocator& old, const Point2& a, const Point2& b) {
   return a + in * (b - a);
 }
 
-// The ring with a vertex added where an edge longer than kTransitionStep runs from old ground out of it or back:
-// else a long edge with one end on old ground (a wall edge whose collinear vertices the union merged) counted as
-// moved whole, and the tool fed along it over ground cut before (the whole length of a strip, front after front).
-Ring withTransitions(const Ring& ring, const RegionLocator& old) {
+// A front ring and, per vertex, whether it moved (lies outside the old ground).
+struct FrontRing {
+  Ring ring;
+  std::vector<bool> moved;
+};
+
+// The ring with a vertex added where an edge longer than kTransitionStep runs from old ground out of it or back
+// (the vertex on old ground): else a long edge with one end on old ground (a wall edge whose collinear vertices the
+// union merged) counted as moved whole, and the tool fed along it over ground cut before (the whole length of a
+// strip, front after front).
+FrontRing withTransitions(const Ring& ring, const RegionLocator& old) {
   const std::size_t n = ring.size();
-  std::vector<bool> in_old(n);
-  for (std::size_t i = 0; i < n; ++i) in_old[i] = old.contains(ring[i]);
-  Ring refined;
-  refined.reserve(n);
+  std::vector<bool> moved(n);
+  for (std::size_t i = 0; i < n; ++i) moved[i] = !old.contains(ring[i]);
+  FrontRing refined;
+  refined.ring.reserve(n);
+  refined.moved.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t j = (i + 1) % n;
-    refined.push_back(ring[i]);
-    if (in_old[i] == in_old[j] || (ring[j] - ring[i]).norm() <= kTransitionStep) continue;
-    refined.push_back(in_old[i] ? leavesOld(old, ring[i], ring[j]) : leavesOld(old, ring[j], ring[i]));
+    refined.ring.push_back(ring[i]);
+    refined.moved.push_back(moved[i]);
+    if (moved[i] == moved[j] || (ring[j] - ring[i]).norm() <= kTransitionStep) continue;
+    refined.ring.push_back(moved[i] ? leavesOld(old, ring[j], ring[i]) : leavesOld(old, ring[i], ring[j]));
+    refined.moved.push_back(false);
   }
   return refined;
 }
@@ -111,11 +121,9 @@ std::vector<Stretch> newStretches(const Region& next, const Region& before_grown
   const RegionLocator old(before_grown);
   std::vector<Stretch> stretches;
   for (const Ring& next_ring : regionRings(next)) {
-    const Ring ring = withTransitions(next_ring, old);
+    const auto [ring, moved] = withTransitions(next_ring, old);
     const std::size_t n = ring.size();
     if (n < 3) continue;
-    std::vector<bool> moved(n);
-    for (std::size_t i = 0; i < n; ++i) moved[i] = !old.contains(ring[i]);
     std::vector<bool> edge(n);  // edge i runs from vertex i to vertex i + 1
     std::size_t still = n;
     for (std::size_t i = 0; i < n; ++i) {
@@ -261,18 +269,19 @@ class FrontCutter {
       if (i != keep) cleared_ = subtract(cleared_, grounds[i]), held_.push_back(std::move(grounds[i]));
   }
 
-  // The held pieces of ground within `band` of the cleared ground join it.
-  void absorbHeldGround(double band) {
-    if (held_.empty()) return;
-    const Region near = offsetRegion(cleared_, band + kOnOldFront, kFrontArcTolerance);
+  // The held pieces of ground that `grown` (the cleared ground grown by the front's band) meets join the cleared
+  // ground; true when any did.
+  bool absorbHeldGround(const Region& grown) {
+    const std::size_t before = held_.size();
     for (std::size_t i = 0; i < held_.size();) {
-      if (regionEmpty(intersect(held_[i], near))) {
+      if (regionEmpty(intersect(held_[i], grown))) {
         ++i;
         continue;
       }
       cleared_ = unite(cleared_, held_[i]);
       held_.erase(held_.begin() + static_cast<std::ptrdiff_t>(i));
     }
+    return held_.size() < before;
   }
 
   // A helix at the deepest point of every piece of the centre region with no cleared ground in it.
@@ -309,8 +318,9 @@ class FrontCutter {
   void grow(double a, double rho, bool unbounded) {
     double reached_mm2 = regionArea(cleared_);
     for (int k = 0; k < kMaxFronts && !regionEmpty(cleared_); ++k) {
-      absorbHeldGround(a);
-      Region next = intersect(offsetRegion(cleared_, a, kFrontArcTolerance), area_);
+      Region grown = offsetRegion(cleared_, a, kFrontArcTolerance);
+      if (absorbHeldGround(grown)) grown = offsetRegion(cleared_, a, kFrontArcTolerance);
+      Region next = intersect(grown, area_);
       if (rho > 0) {
         const Region window = offsetRegion(subtract(next, cleared_), 2 * rho + kClosingWindowMm, kFrontArcTolerance);
         const Region beyond = intersect(unite(subtract(level_.centre, next), solid_), window);
