@@ -219,3 +219,23 @@ TEST(EngagementClearing, StripOpenAtBothEndsIsClearedFromOneEndWithoutFeedingAlo
   EXPECT_LE(m.figures.over_mm, m.stats.unbounded_mm + 0.025 * m.figures.cut_mm);
   EXPECT_LE(m.figures.worst_deg, 47.0);
 }
+
+// Over 90 degrees (a thin slab's wider engagement) the band is wider than the radius, and where the fronts close a
+// hole of material whose half-width lies between r and the band, the last front has no ring: every centre of the
+// hole counted as cleared though none was visited (ANC101's first level, 1.7 mm thick at 120 degrees with a 20 mm
+// cutter: a strip 2.8 mm wide and 227 mm long stood over the slab, and the next level's rapid at the safe height went
+// through it). Plates of several heights, so that the last hole closes at half-widths either side of r.
+TEST(EngagementClearing, WideEngagementClearsTheHoleTheLastFrontCloses) {
+  const double r = 10;
+  // The band 12.7 mm: the last holes close at half-widths of about 7.7, 10.2, 11.4 and (a third front) 1.0 mm.
+  for (const double height : {46.0, 51.0, 53.5, 58.0}) {
+    const Slab slab = slabOf(regionFromPolygons({rectangle(0, 0, 100, height)}), {}, r);
+    const Measured m = clearAndMeasure(slab, r, 120);
+    std::printf("plate %.1f mm: %.0f mm cut, %.0f mm rapid, %.1f mm over (worst %.0f deg), %.1f mm unbounded, "
+                "%ld left\n",
+                height, m.feed_mm, m.rapid_mm, m.figures.over_mm, m.figures.worst_deg, m.stats.unbounded_mm, m.left);
+    EXPECT_TRUE(m.inside) << "plate " << height;
+    EXPECT_EQ(m.left, 0) << "plate " << height;
+    EXPECT_LE(m.figures.over_mm, m.stats.unbounded_mm + 0.01 * m.figures.cut_mm) << "plate " << height;
+  }
+}

@@ -22,7 +22,9 @@
 // clockwise), the nearest first (a front that moved whole from its vertex nearest the tool), going on round a front
 // along the stretches that did not move (they lie on cleared ground) where that is quicker than a hop; else a hop over
 // the slab, a rapid down a column of cleared ground 0.05 mm inside it to the safe height, a plunge and a short feed
-// onto the front.
+// onto the front. Over 90 degrees the band is wider than r: where a front closes a hole of material (or pinches a
+// neck off) whose half-width lies between r and the band, the centres farther than r from the new rings and the old
+// ground are cut round their own rings (no bound claimed there), else their material stood uncut.
 //
 // The bound: a cutter of radius r on a path turning round material outside at radius rho, cutting a band a wide,
 // meets material over the angle theta with (rho + r - a)^2 = rho^2 + r^2 + 2 rho r cos(theta) (a straight path is

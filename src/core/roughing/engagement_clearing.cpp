@@ -24,6 +24,7 @@ constexpr int kMaxFronts = 20000;
 constexpr double kClosingWindowMm = 1.0;     // beyond 2 rho round a front's growth: the material its closing needs
 constexpr double kLeastCornerShare = 0.2;    // the last bounded phase's corner radius, in tool radii (at least)
 constexpr double kTransitionStep = 0.5;      // mm: edges longer than this are cut where they leave the old front
+constexpr double kLeastStrandedMm2 = 1e-3;   // stranded centres (cutStranded) of less area are the offsets' noise
 
 Region disc(const Point2& centre, double radius) {
   Ring ring;
@@ -334,8 +335,31 @@ class FrontCutter {
       reach_ = offsetRegion(cleared_, kOnOldFront, kFrontArcTolerance);
       band_ = a;
       cutStretches(newStretches(next, reach_), unbounded);
+      if (a > engagement_.tool_radius) cutStranded(next);
       cleared_ = intersect(simplifyRegion(next, 0.125 * kOnOldFront), level_.centre);  // fewer vertices, still inside
     }
+  }
+
+  // With a band wider than the radius (over 90 degrees: a thin slab's engagement), material may stand more than r
+  // from every ring the tool followed: where a front closes a hole of material whose half-width lies between r and
+  // the band, or pinches a neck of it off, the new front has no ring there. Those centres (farther than r, less
+  // kOnOldFront, from the new front's rings and from the ground cleared before) are cut round their own rings,
+  // material on the right; they lie within the band less r of the old ground, so no point of them is farther than
+  // r from their rings. No engagement bound is claimed there (ClearingStats::unbounded_mm).
+  void cutStranded(const Region& next) {
+    const double reach = engagement_.tool_radius - kOnOldFront;
+    const Region stranded = subtract(offsetRegion(next, -reach, kFrontArcTolerance),
+                                     offsetRegion(cleared_, reach, kFrontArcTolerance));
+    std::vector<Stretch> stretches;
+    for (const RegionPiece& piece : regionPieces(stranded)) {
+      if (regionArea(piece.rings) < kLeastStrandedMm2) continue;
+      for (const Ring& ring : regionRings(piece.rings)) {
+        Polyline path(ring.rbegin(), ring.rend());
+        path.push_back(path.front());
+        stretches.push_back({std::move(path), true, stretches.size(), {}});
+      }
+    }
+    cutStretches(std::move(stretches), true);
   }
 
   // The stretch nearest the tool first (a closed one, a whole ring that moved, from its vertex nearest the tool),
