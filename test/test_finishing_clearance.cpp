@@ -192,3 +192,57 @@ TEST(HoleLinks, ARunCrossesLowOverOpenGroundAndLiftsOverWhatStands) {
   EXPECT_EQ(report.gouges, 0) << report.worst_gouge_mm;
   EXPECT_EQ(report.collisions, 0);
 }
+
+// Two counterbored holes (14 mm x 8 deep over a 6 mm through bore). Where the stock roughing left proves the
+// counterbores cut (here the part itself), the drill's R plane lies 2 mm over the counterbore's floor, not 2 mm over
+// the mouth: it fed 8 mm of air in every hole before. Where the stock still fills them (the uncut block, which the
+// drill could reach 0.5 mm over), the R plane stays 2 mm over the mouth. The simulation finds no gouge and no collision of drill, shank or holder either way.
+TEST(HoleLinks, ACounterboreCutBeforeTheDrillHoldsItsRPlane) {
+  TopoDS_Shape shape = solidBox({0, 0, 0}, {100, 40, 20});
+  const Part block = stepPart(shape, "uncut_block");
+  for (const double x : {30.0123, 70.0123}) {
+    shape = cut(shape, solidCylinder({x, 20.0377, -1}, Vec3::UnitZ(), 3, 22));
+    shape = cut(shape, solidCylinder({x, 20.0377, 12}, Vec3::UnitZ(), 7, 9));
+  }
+  const Part part = stepPart(shape, "counterbored_block");
+  std::vector<Hole> holes = findHoles(part);
+  ASSERT_EQ(holes.size(), 2u);
+  for (const Hole& hole : holes) ASSERT_NEAR(hole.bore_start, 8, 1e-6);
+  const ToolLibrary library = loadToolLibrary(std::string(ART2PART_SOURCE_DIR) + "/config/tools.yaml");
+  const Tool* drill = library.find("drill6");
+  ASSERT_NE(drill, nullptr);
+  const SetupFrame frame = setupFrame(part, Vec3::UnitZ());
+  const double retract = HoleOptions{}.retract_height, margin = 0.5;
+  // The height of the rapid each feed starts from: the R planes.
+  const auto rPlanes = [](const Toolpath& path) {
+    std::vector<double> heights;
+    for (std::size_t i = 1; i < path.size(); ++i)
+      if (path[i].move == MoveKind::Feed && path[i - 1].move == MoveKind::Rapid) heights.push_back(path[i - 1].tip.z());
+    return heights;
+  };
+  StockAfterRoughing cut_stock(part, part.mesh, RoughingPlan{}, library);
+  const Toolpath low =
+      drillingPath(holes, *drill, false, 0, 5, {}, linkOverStock(cut_stock.slabs(0, frame), frame, *drill, margin));
+  StockAfterRoughing full_stock(part, block.mesh, RoughingPlan{}, library);
+  const Toolpath high =
+      drillingPath(holes, *drill, false, 0, 5, {}, linkOverStock(full_stock.slabs(0, frame), frame, *drill, margin));
+  const std::vector<double> low_r = rPlanes(low), high_r = rPlanes(high);
+  ASSERT_EQ(low_r.size(), 2u);
+  ASSERT_EQ(high_r.size(), 2u);
+  for (int h = 0; h < 2; ++h) {
+    EXPECT_NEAR(low_r[h], 12 + retract, 1e-6) << "hole " << h;
+    EXPECT_NEAR(high_r[h], 20 + retract, 1e-6) << "hole " << h;
+  }
+
+  std::vector<HoleMachining> methods(holes.size());
+  for (HoleMachining& m : methods) m.method = HoleMethod::Drill;
+  const Mesh plugs = holePlugs(holes, methods);
+  VerifyOptions options;
+  options.resolution = 0.25;
+  options.stock_mesh = &plugs;
+  Toolpath run = low;
+  for (CutterLocation& point : run) point.op = 0;
+  const VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, run, {*drill}, options);
+  EXPECT_EQ(report.gouges, 0) << report.worst_gouge_mm;
+  EXPECT_EQ(report.collisions, 0);
+}

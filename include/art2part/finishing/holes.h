@@ -170,7 +170,9 @@ double linkAtClearanceLevel(const Vec3& from, const Vec3& to, double lowest, dou
 
 // The cutter locations of one group of holes (same method and tool) made with `tool` in setup `setup` whose direction
 // is the holes' axis: in the order given (travelOrder's is the caller's choice), for each a rapid down to the R plane
-// above its mouth (retract_height), a feed straight down the axis to the depth, a rapid back to the R plane. The run
+// (retract_height over its mouth; under a counterbore or countersink, down to retract_height over the bore's start
+// where `link` proves the whole tool may stand there: the drill is not fed through the counterbore's air), a feed
+// straight down the axis to the depth, a rapid back to the R plane. The run
 // starts and ends at the clearance level (`clearance_above` mm over the highest mouth along the axis, raised over the
 // part's material measured round the holes, free_radius, + holder_margin: the caller passes enough to clear the part
 // beyond clearance_radius, e.g. the setup's stock top + its clearance - the highest mouth); between holes the tool goes

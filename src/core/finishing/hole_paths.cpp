@@ -81,22 +81,41 @@ Vec3 runAxis(const std::vector<Hole>& holes, const std::string& what, const Hole
   return axis;
 }
 
-// One run of holes along `axis`: from `level` over the first hole down to its R plane, `visit` (its moves from the R
-// plane back to it), then to each next hole up to the height `link` gives (never under either R plane nor over
-// `level`), across and down to its R plane; back up to `level` at the end.
+// Where the R plane of a hole lies.
+enum class RPlane {
+  OverMouth,  // retract_height over the mouth
+  OverBore,   // retract_height over where the main bore begins, where `link` proves the tool may stand there
+};
+
+// The R plane of `hole`: retract_height over its mouth; with RPlane::OverBore, for a hole with a counterbore or a
+// countersink (bore_start > 0), retract_height over the bore's start instead where the link proves the whole tool
+// clear there (over the stock roughing left: the counterbore was cut before the drill comes); a drill fed from over
+// the mouth fed through the counterbore's air. Nothing between: over stock the link does not prove cut down to the
+// bore, the R plane keeps its retract_height over the mouth.
+Vec3 rPlane(const Hole& hole, const Vec3& axis, RPlane where, const HoleLink& link, const HoleOptions& options) {
+  const Vec3 over_mouth = hole.mouth + options.retract_height * axis;
+  if (where == RPlane::OverMouth || !(hole.bore_start > 0)) return over_mouth;
+  const Vec3 over_bore = over_mouth - hole.bore_start * axis;
+  const double low = over_bore.dot(axis);
+  return link(over_bore, over_bore, low, over_mouth.dot(axis)) <= low ? over_bore : over_mouth;
+}
+
+// One run of holes along `axis`: from `level` over the first hole down to its R plane (rPlane), `visit` (its moves
+// from the R plane back to it), then to each next hole up to the height `link` gives (never under either R plane nor
+// over `level`), across and down to its R plane; back up to `level` at the end.
 template <class Visit>
-void holeRun(const std::vector<Hole>& holes, const Vec3& axis, double level, const HoleLink& link, int setup,
-             const std::string& tool, const HoleOptions& options, Toolpath& path, Visit visit) {
+void holeRun(const std::vector<Hole>& holes, const Vec3& axis, double level, const HoleLink& link, RPlane where,
+             int setup, const std::string& tool, const HoleOptions& options, Toolpath& path, Visit visit) {
   const auto over = [&](const Hole& hole, double height) {
     return Vec3(hole.mouth + (height - hole.mouth.dot(axis)) * axis);
   };
   const auto rapid = [&](const Vec3& to) { push(path, cutterLocation(setup, tool, MoveKind::Rapid, to, axis)); };
   for (std::size_t h = 0; h < holes.size(); ++h) {
-    const Vec3 r_plane = holes[h].mouth + options.retract_height * axis;
+    const Vec3 r_plane = rPlane(holes[h], axis, where, link, options);
     if (h == 0) {
       rapid(over(holes[h], level));
     } else {
-      const Vec3 before = holes[h - 1].mouth + options.retract_height * axis;
+      const Vec3 before = rPlane(holes[h - 1], axis, where, link, options);
       const double lowest = std::max(before.dot(axis), r_plane.dot(axis));
       const double height = std::clamp(link(before, r_plane, lowest, level), lowest, std::max(lowest, level));
       rapid(over(holes[h - 1], height));
@@ -159,7 +178,8 @@ Toolpath drillingPath(const std::vector<Hole>& holes, const Tool& tool, bool spo
   if (holes.empty()) return path;
   const Vec3 axis = runAxis(holes, "drillingPath", options);
   const double level = clearanceLevel(holes, axis, clearance_above, options);
-  holeRun(holes, axis, level, link, setup, tool.id, options, path, [&](const Hole& hole, const Vec3& r_plane) {
+  holeRun(holes, axis, level, link, RPlane::OverBore, setup, tool.id, options, path,
+          [&](const Hole& hole, const Vec3& r_plane) {
     const double depth = spot ? spotDepth(hole, tool, options) : drillDepth(hole, tool, options);
     push(path, cutterLocation(setup, tool.id, MoveKind::Feed, hole.mouth - depth * axis, axis));
     push(path, cutterLocation(setup, tool.id, MoveKind::Rapid, r_plane, axis));
@@ -183,7 +203,8 @@ Toolpath helixPaths(const std::vector<Hole>& holes, const Tool& tool, int setup,
   if (holes.empty()) return path;
   const Vec3 axis = runAxis(holes, "helixPaths", options);
   const double level = clearanceLevel(holes, axis, clearance_above, options);
-  holeRun(holes, axis, level, link, setup, tool.id, options, path, [&](const Hole& hole, const Vec3& r_plane) {
+  holeRun(holes, axis, level, link, RPlane::OverMouth, setup, tool.id, options, path,
+          [&](const Hole& hole, const Vec3& r_plane) {
     helixDown(hole, tool, setup, axis, r_plane, options, path);
   });
   return path;
