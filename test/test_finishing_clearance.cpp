@@ -133,6 +133,24 @@ TEST(HelixPaths, ARunOfHolesAtDifferentHeightsTraversesLevelOverAllOfThem) {
 }
 
 
+namespace {
+
+// The simulation of a drilling run that cuts the holes' plugs: no gouge, no collision of drill, shank or holder.
+void expectDrilledClean(const Part& part, const std::vector<Hole>& holes, Toolpath run, const Tool& drill) {
+  std::vector<HoleMachining> methods(holes.size());
+  for (HoleMachining& m : methods) m.method = HoleMethod::Drill;
+  const Mesh plugs = holePlugs(holes, methods);
+  VerifyOptions options;
+  options.resolution = 0.25;
+  options.stock_mesh = &plugs;
+  for (CutterLocation& point : run) point.op = 0;
+  const VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, run, {drill}, options);
+  EXPECT_EQ(report.gouges, 0) << report.worst_gouge_mm;
+  EXPECT_EQ(report.collisions, 0);
+}
+
+}  // namespace
+
 // Three holes drilled in one run: two in one face, the third beyond a rib standing 20 mm over it. Over the stock
 // (here the part alone: nothing left to rough), the drill crosses between the first two at their R planes and lifts
 // over the rib only for the third (linkOverStock); at the clearance level every crossing went up 23 mm and down again.
@@ -180,17 +198,7 @@ TEST(HoleLinks, ARunCrossesLowOverOpenGroundAndLiftsOverWhatStands) {
   };
   EXPECT_LT(rapidLength(low), rapidLength(high) - 40);
 
-  std::vector<HoleMachining> methods(holes.size());
-  for (HoleMachining& m : methods) m.method = HoleMethod::Drill;
-  const Mesh plugs = holePlugs(holes, methods);
-  VerifyOptions options;
-  options.resolution = 0.25;
-  options.stock_mesh = &plugs;
-  Toolpath run = low;
-  for (CutterLocation& point : run) point.op = 0;
-  const VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, run, {*drill}, options);
-  EXPECT_EQ(report.gouges, 0) << report.worst_gouge_mm;
-  EXPECT_EQ(report.collisions, 0);
+  expectDrilledClean(part, holes, low, *drill);
 }
 
 // Two counterbored holes (14 mm x 8 deep over a 6 mm through bore). Where the stock roughing left proves the
@@ -234,15 +242,5 @@ TEST(HoleLinks, ACounterboreCutBeforeTheDrillHoldsItsRPlane) {
     EXPECT_NEAR(high_r[h], 20 + retract, 1e-6) << "hole " << h;
   }
 
-  std::vector<HoleMachining> methods(holes.size());
-  for (HoleMachining& m : methods) m.method = HoleMethod::Drill;
-  const Mesh plugs = holePlugs(holes, methods);
-  VerifyOptions options;
-  options.resolution = 0.25;
-  options.stock_mesh = &plugs;
-  Toolpath run = low;
-  for (CutterLocation& point : run) point.op = 0;
-  const VerificationReport report = verifyToolpath(part.mesh, part.triangle_face, run, {*drill}, options);
-  EXPECT_EQ(report.gouges, 0) << report.worst_gouge_mm;
-  EXPECT_EQ(report.collisions, 0);
+  expectDrilledClean(part, holes, low, *drill);
 }
