@@ -110,12 +110,12 @@ void holeRun(const std::vector<Hole>& holes, const Vec3& axis, double level, con
     return Vec3(hole.mouth + (height - hole.mouth.dot(axis)) * axis);
   };
   const auto rapid = [&](const Vec3& to) { push(path, cutterLocation(setup, tool, MoveKind::Rapid, to, axis)); };
+  Vec3 before = Vec3::Zero();  // the R plane of the hole before
   for (std::size_t h = 0; h < holes.size(); ++h) {
     const Vec3 r_plane = rPlane(holes[h], axis, where, link, options);
     if (h == 0) {
       rapid(over(holes[h], level));
     } else {
-      const Vec3 before = rPlane(holes[h - 1], axis, where, link, options);
       const double lowest = std::max(before.dot(axis), r_plane.dot(axis));
       const double height = std::clamp(link(before, r_plane, lowest, level), lowest, std::max(lowest, level));
       rapid(over(holes[h - 1], height));
@@ -123,6 +123,7 @@ void holeRun(const std::vector<Hole>& holes, const Vec3& axis, double level, con
     }
     rapid(r_plane);
     visit(holes[h], r_plane);
+    before = r_plane;
   }
   rapid(over(holes.back(), level));
 }
