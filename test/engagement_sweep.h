@@ -23,6 +23,11 @@ struct EngagementFigures {
   // Of the length judged, where the material met lies mostly on the right of the motion (climb milling with the
   // spindle turning clockwise: each tooth enters the chip at its thickest) and where mostly on the left.
   double climb_mm = 0, conventional_mm = 0;
+  // Rapids that end inside the slab (below `top`, above the level) where material lies within the cutter's radius
+  // plus `rapid_clearance` of the tool axis (sweep's arguments), and the least gap met at such a rapid's end
+  // (negative: material inside the disc).
+  int rapids_near_material = 0;
+  double least_rapid_gap = 1e300;
 };
 
 class EngagementSweep {
@@ -47,11 +52,18 @@ class EngagementSweep {
 
   // Sweeps the moves at height `z` (the cutting ones, and whatever else runs at z) with a cutter of `radius`; the
   // engagement is measured on the moves for which `measured(i)` holds (i: index of the move's end).
+  // Rapids ending in the slab, between z and `top`, are judged against the material left when they run: a gap under
+  // `rapid_clearance` between the cutter's disc and it counts (EngagementFigures::rapids_near_material).
   template <class Measured>
   EngagementFigures sweep(const std::vector<ClearingPoint>& moves, double z, double radius, double limit_deg,
-                          Measured measured) {
+                          Measured measured, double top = -1e300, double rapid_clearance = 0) {
     EngagementFigures f;
     for (std::size_t i = 1; i < moves.size(); ++i) {
+      if (moves[i].move == ClearingMove::Rapid && moves[i].tip.z() > z + 1e-9 && moves[i].tip.z() < top) {
+        const double gap = gapToMaterial(moves[i].tip.head<2>(), radius, rapid_clearance + 2 * pixel_);
+        f.least_rapid_gap = std::min(f.least_rapid_gap, gap);
+        if (gap < rapid_clearance) ++f.rapids_near_material;
+      }
       if (moves[i].tip.z() > z + 1e-9 || moves[i - 1].tip.z() > z + 1e-9) {
         if (moves[i].tip.z() <= z + 1e-9) remove(moves[i].tip.head<2>(), radius);  // a plunge's foot
         continue;
@@ -94,6 +106,21 @@ class EngagementSweep {
     const int i = static_cast<int>(std::floor((p.x() - origin_.x()) / pixel_));
     const int j = static_cast<int>(std::floor((p.y() - origin_.y()) / pixel_));
     return i >= 0 && j >= 0 && i < nx_ && j < ny_ && material_[index(i, j)];
+  }
+
+  // How far the material left lies outside the disc of `radius` round c (the nearest material pixel's centre, less
+  // half a pixel), looked for up to `within` beyond it: `within` when none is that near.
+  double gapToMaterial(const Point2& c, double radius, double within) const {
+    const double reach = radius + within;
+    const int j0 = std::max(0, static_cast<int>(std::floor((c.y() - reach - origin_.y()) / pixel_)));
+    const int j1 = std::min(ny_ - 1, static_cast<int>(std::ceil((c.y() + reach - origin_.y()) / pixel_)));
+    const int i0 = std::max(0, static_cast<int>(std::floor((c.x() - reach - origin_.x()) / pixel_)));
+    const int i1 = std::min(nx_ - 1, static_cast<int>(std::ceil((c.x() + reach - origin_.x()) / pixel_)));
+    double nearest = reach + 0.5 * pixel_;
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i)
+        if (material_[index(i, j)]) nearest = std::min(nearest, (centre(i, j) - c).norm());
+    return std::min(within, nearest - 0.5 * pixel_ - radius);
   }
 
   // The samples of the leading half of the circle of radius r + 1.5 pixels round c that lie in material (kSamples
