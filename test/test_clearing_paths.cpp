@@ -782,3 +782,25 @@ TEST(ClearingPaths, DescentsNotKnownClearRapidOnlyDownToWhatTheModelProves) {
     EXPECT_LE(worstCoverage(level.centre, moves, level.z), 2 + 1e-6);
   }
 }
+
+// A level cut with no tool position yet (a finishing floor piece, written after the pieces before it) but told where
+// the tool comes from: it starts in the piece, and at the pass end, quickest to reach from there. Without it, each of
+// featuretype's face-milled floor pieces began at its first pass whatever the tool's side, and the op crossed the part
+// between them (110 and 137 mm).
+TEST(ClearingPaths, ALevelStartsNearWhereTheToolComesFrom) {
+  // Two squares, lines along x at y = 2, 6, ..., 18: each one boustrophedon pass from its bottom-left corner to its
+  // top-right one, either way round.
+  const ClearingLevel plain = levelOf(region({rectangle(0, 0, 20, 20), rectangle(100, 0, 120, 20)}));
+  const ClearingOptions options = optionsOf(4);
+  const std::vector<std::pair<Point2, Point2>> cases = {
+      {{-5, -5}, {0, 2}}, {{25, 25}, {20, 18}}, {{95, -5}, {100, 2}}, {{125, 25}, {120, 18}}};
+  for (const auto& [near, start] : cases) {
+    SCOPED_TRACE(near.x() + 1000 * near.y());
+    ClearingLevel level = plain;
+    level.start_near = near;
+    ClearingStats stats;
+    const std::vector<ClearingPoint> moves = clearChecked(level, options, stats);
+    ASSERT_FALSE(moves.empty());
+    EXPECT_LE((xy(moves.front()) - start).norm(), 0.01);  // the region's grid
+  }
+}

@@ -60,6 +60,9 @@ struct ClearingLevel {
   std::optional<Eigen::Vector3d> from;  // where the tool is (the last point of the level before); none: the
                                         // clearance plane. Its column must be clear from its height up.
   std::vector<ClearedLevel> cleared;    // levels above this one already cleared, nearest first
+  // Where the tool comes from when `from` is not given (it is not a move: the caller links from there), so the level
+  // starts at the pass end, ring vertex or piece quickest to reach from it; none: the cheapest entry, wherever it is.
+  std::optional<Point2> start_near;
   // The lowest height in [lowest, ceiling) at which a model of the stock proves the straight way from a to b clear
   // for the whole tool, else `ceiling` (LinkClearance); empty: the regions above only.
   std::function<double(const Point2& a, const Point2& b, double lowest, double ceiling)> clear_height;

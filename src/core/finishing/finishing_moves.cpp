@@ -183,15 +183,18 @@ TourStop floorStop(const std::vector<ClearingPoint>& moves, double z) {
   return stop;
 }
 
-}  // namespace
-
-void cutFloors(const std::vector<FloorLevel>& floors, const ClearingOptions& clearing, const DescentLimit& limit,
-               double reach, double rapid_mm_min, PathWriter& out) {
+// The floors written piece by piece in the nearest order and in or-opt's (the quicker as written), from `out`; with
+// `start_near` each piece starts where it is quickest to reach from where the order leaves the tool
+// (ClearingLevel::start_near), else at its cheapest entry wherever that is.
+struct PiecesWritten {
+  PathWriter path;
+  bool as_levels = false;  // the nearest order was one piece per level, in level order
+};
+PiecesWritten floorsByPieces(const std::vector<FloorLevel>& floors, const std::vector<ClearingLevel>& levels,
+                             const ClearingOptions& clearing, const DescentLimit& limit, double reach,
+                             double rapid_mm_min, bool start_near, const PathWriter& before) {
   const double shift = 2 * clearing.tool_radius;
-  std::vector<ClearingLevel> levels;
-  levels.reserve(floors.size());
-  for (const FloorLevel& f : floors) levels.push_back(f.clear);
-  const PathWriter before = out;
+  PathWriter out = before;
   PieceSchedule schedule(levels, reach);
   const std::vector<LevelPiece>& pieces = schedule.pieces();
   // A piece's clearing does not depend on the order: each is cleared once and written in every order tried.
@@ -200,31 +203,55 @@ void cutFloors(const std::vector<FloorLevel>& floors, const ClearingOptions& cle
   std::vector<std::size_t> nearest;
   bool as_levels = pieces.size() == levels.size();  // one piece per level, cut in level order so far
   std::optional<Point2> at;
+  if (start_near && out.started()) at = out.at().head<2>();
   for (std::size_t i = schedule.next(at); i < pieces.size(); i = schedule.next(at)) {
     as_levels = as_levels && i == nearest.size() && pieces[i].level == i;
     const FloorLevel& floor = floors[pieces[i].level];
     ClearingLevel level = levels[pieces[i].level];
     level.centre = pieces[i].rings;
+    if (start_near) level.start_near = at;
     moves[i] = safeDescents(clearLevel(level, clearing), *floor.safe, limit, shift);
     stops[i] = floorStop(moves[i], level.z);
     out.clearing(moves[i]);
     nearest.push_back(i);
     at = out.at().head<2>();
   }
-  auto quicker = [rapid_mm_min, &out](PathWriter&& other) {
-    if (other.secondsToRetract(rapid_mm_min) < out.secondsToRetract(rapid_mm_min)) out = std::move(other);
-  };
   const std::vector<std::size_t> shortened = shortenedOrder(stops, nearest, schedule.waitsFor());
   if (shortened != nearest) {
     PathWriter by_shortened = before;
     for (std::size_t i : shortened) by_shortened.clearing(moves[i]);
-    quicker(std::move(by_shortened));
+    if (by_shortened.secondsToRetract(rapid_mm_min) < out.secondsToRetract(rapid_mm_min)) out = std::move(by_shortened);
   }
-  if (as_levels) return;  // the same clearing as level after level: no need to write that too
-  PathWriter by_levels = before;
-  for (const FloorLevel& f : floors)
-    by_levels.clearing(safeDescents(clearLevel(f.clear, clearing), *f.safe, limit, shift));
-  quicker(std::move(by_levels));
+  return {std::move(out), as_levels};
+}
+
+}  // namespace
+
+void cutFloors(const std::vector<FloorLevel>& floors, const ClearingOptions& clearing, const DescentLimit& limit,
+               double reach, double rapid_mm_min, PathWriter& out) {
+  std::vector<ClearingLevel> levels;
+  levels.reserve(floors.size());
+  for (const FloorLevel& f : floors) levels.push_back(f.clear);
+  const PathWriter before = out;
+  auto quicker = [rapid_mm_min, &out](PathWriter&& other) {
+    if (other.secondsToRetract(rapid_mm_min) < out.secondsToRetract(rapid_mm_min)) out = std::move(other);
+  };
+  // Starting each piece nearest the tool shortens the way there, but the entry it picks may cost more as written
+  // (a descent where no rapid may come is a feed): each order is written both ways, the quickest kept.
+  PiecesWritten first = floorsByPieces(floors, levels, clearing, limit, reach, rapid_mm_min, false, before);
+  const bool as_levels = first.as_levels;
+  out = std::move(first.path);
+  quicker(floorsByPieces(floors, levels, clearing, limit, reach, rapid_mm_min, true, before).path);
+  for (const bool start_near : {false, true}) {
+    if (as_levels && !start_near) continue;  // the same clearing as the pieces' first order
+    PathWriter by_levels = before;
+    for (const FloorLevel& f : floors) {
+      ClearingLevel level = f.clear;
+      if (start_near && by_levels.started()) level.start_near = by_levels.at().head<2>();
+      by_levels.clearing(safeDescents(clearLevel(level, clearing), *f.safe, limit, 2 * clearing.tool_radius));
+    }
+    quicker(std::move(by_levels));
+  }
 }
 
 }  // namespace art2part::finishing_detail

@@ -229,7 +229,9 @@ struct FloorLevel {
 // written. Each piece as clearLevel clears it, its descents moved by safeDescents. Kept where its moves take less
 // time than level after level (clearLevel over each level's whole centre), feeds at the tool's rate and rapids at
 // `rapid_mm_min`: the links differ (a descent where no rapid may come is a feed; Ailette's flat1 fed 78 mm more down
-// piece by piece). Why: level after level, the face mill crossed the part between the floors at both ends at every
+// piece by piece). Each order is written twice: each piece (each level) started at its cheapest entry, and started
+// where it is quickest to reach from where the one before left the tool (ClearingLevel::start_near); the quickest
+// of all is kept. Why: level after level, the face mill crossed the part between the floors at both ends at every
 // level; nearest first, it still left pieces behind to come back for.
 void cutFloors(const std::vector<FloorLevel>& floors, const ClearingOptions& clearing, const DescentLimit& limit,
                double reach, double rapid_mm_min, PathWriter& out);

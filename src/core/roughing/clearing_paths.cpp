@@ -430,8 +430,9 @@ void cutContours(const std::vector<RegionPiece>& pieces, const ClearingLevel& le
   while (!stretches.empty()) {
     std::size_t next = 0, start = 0;
     double nearest = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < stretches.size() && writer.placed(); ++i) {
-      const std::pair<std::size_t, double> at = nearestStart(stretches[i], writer.at());
+    const std::optional<Point2> from = writer.comesFrom();
+    for (std::size_t i = 0; i < stretches.size() && from; ++i) {
+      const std::pair<std::size_t, double> at = nearestStart(stretches[i], *from);
       if (at.second < nearest) next = i, start = at.first, nearest = at.second;
     }
     RingStretch stretch = std::move(stretches[next]);

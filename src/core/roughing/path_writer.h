@@ -58,6 +58,12 @@ class PathWriter {
   bool placed() const { return !moves_.empty() || tool_.has_value(); }
   Point2 at() const { return position().head<2>(); }
   bool atLevel() const { return placed() && position().z() == level_.z; }
+  // Where the tool comes from, to weigh where to start: where it is, else the level's start_near; none before the
+  // first move of a level without either.
+  std::optional<Point2> comesFrom() const {
+    if (placed()) return at();
+    return level_.start_near;
+  }
 
   void add(const Point2& p, double z, ClearingMove move) {
     const Eigen::Vector3d tip(p.x(), p.y(), z);
@@ -110,9 +116,10 @@ class PathWriter {
     return 60 * 2 * (drop / slope_) / feed_;
   }
   // What starting a cut at `start` costs, in seconds, to choose the next cut by: the way there straight at the rapid
-  // rate (0 before the first move) and the entry (`in_air`: a plunge, else a ramp).
+  // rate from where the tool comes (comesFrom; 0 without) and the entry (`in_air`: a plunge, else a ramp).
   double startSeconds(const Point2& start, bool in_air) const {
-    return (placed() ? 60 * (start - at()).norm() / rapid_ : 0.0) + entrySeconds(in_air);
+    const std::optional<Point2> from = comesFrom();
+    return (from ? 60 * (start - *from).norm() / rapid_ : 0.0) + entrySeconds(in_air);
   }
 
   // What starting a cut at `start` costs when it is entered from the side, from the air point `side`
