@@ -62,6 +62,7 @@ struct ClearingLevel {
   std::vector<ClearedLevel> cleared;    // levels above this one already cleared, nearest first
   // Where the tool comes from when `from` is not given (it is not a move: the caller links from there), so the level
   // starts at the pass end, ring vertex or piece quickest to reach from it; none: the cheapest entry, wherever it is.
+  // clearLevel only (finishing floors set it); clearLevelByEngagement goes by `from` alone.
   std::optional<Point2> start_near;
   // The lowest height in [lowest, ceiling) at which a model of the stock proves the straight way from a to b clear
   // for the whole tool, else `ceiling` (LinkClearance); empty: the regions above only.
