@@ -12,6 +12,8 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <limits>
+#include <optional>
 #include <stdexcept>
 
 using namespace art2part;
@@ -202,4 +204,92 @@ TEST(OrderedTour, RejectsAnOrderThatIsNoPermutationOrBreaksTheRule) {
   EXPECT_THROW(shortenedOrder(stops, {1, 0, 2}, waits), std::invalid_argument);
   EXPECT_THROW(shortenedOrder(stops, {0, 1, 2}, {{}, {0}}), std::invalid_argument);
   EXPECT_NO_THROW(shortenedOrder(stops, {2, 0, 1}, waits));
+}
+
+namespace {
+
+// The least travel over every order of `stops` from `start` (none: from the first entry), by trying them all.
+double bruteForceLeast(const std::vector<TourStop>& stops, const std::optional<Eigen::Vector3d>& start) {
+  std::vector<std::size_t> order(stops.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  double least = std::numeric_limits<double>::infinity();
+  do {
+    double travel = tourTravel(stops, order);
+    if (start) travel += (*start - stops[order.front()].entry).norm();
+    least = std::min(least, travel);
+  } while (std::next_permutation(order.begin(), order.end()));
+  return least;
+}
+
+double travelFromStart(const std::vector<TourStop>& stops, const std::vector<std::size_t>& order,
+                       const std::optional<Eigen::Vector3d>& start) {
+  double travel = tourTravel(stops, order);
+  if (start && !order.empty()) travel += (*start - stops[order.front()].entry).norm();
+  return travel;
+}
+
+bool isPermutation(std::vector<std::size_t> order, std::size_t n) {
+  std::sort(order.begin(), order.end());
+  for (std::size_t i = 0; i < order.size(); ++i)
+    if (order[i] != i) return false;
+  return order.size() == n;
+}
+
+}  // namespace
+
+// A setup's operations with one tool: the order found travels as little as the best of every order (exact up to
+// kExactTourStops stops), from where the tool is or from anywhere.
+TEST(LeastTravelOrder, MatchesEveryOrderTriedOnRandomStops) {
+  std::mt19937 rng(19);
+  std::uniform_real_distribution<double> coord(-100, 100);
+  auto point = [&] { return Eigen::Vector3d(coord(rng), coord(rng), coord(rng) / 10); };
+  for (int trial = 0; trial < 60; ++trial) {
+    const std::size_t n = 1 + trial % 7;
+    std::vector<TourStop> stops(n);
+    for (TourStop& s : stops) s = {point(), point()};
+    std::optional<Eigen::Vector3d> start;
+    if (trial % 2) start = point();
+    const std::vector<std::size_t> order = leastTravelOrder(stops, start);
+    ASSERT_TRUE(isPermutation(order, n)) << "trial " << trial;
+    EXPECT_NEAR(travelFromStart(stops, order, start), bruteForceLeast(stops, start), 1e-6) << "trial " << trial;
+  }
+}
+
+// Beyond kExactTourStops: never longer than the order given, nor than nearest neighbour from the start.
+TEST(LeastTravelOrder, ManyStopsTravelNoMoreThanTheGivenOrNearestOrder) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> coord(-100, 100);
+  auto point = [&] { return Eigen::Vector3d(coord(rng), coord(rng), 0); };
+  for (int trial = 0; trial < 10; ++trial) {
+    const std::size_t n = kExactTourStops + 1 + static_cast<std::size_t>(trial) * 3;
+    std::vector<TourStop> stops(n);
+    for (TourStop& s : stops) {
+      s.entry = point();
+      s.exit = s.entry + Eigen::Vector3d(coord(rng) / 20, coord(rng) / 20, 0);
+    }
+    const Eigen::Vector3d start = point();
+    const std::vector<std::size_t> order = leastTravelOrder(stops, start);
+    ASSERT_TRUE(isPermutation(order, n));
+    std::vector<std::size_t> given(n), nearest;
+    for (std::size_t i = 0; i < n; ++i) given[i] = i;
+    std::vector<bool> used(n, false);
+    Eigen::Vector3d at = start;
+    for (std::size_t k = 0; k < n; ++k) {
+      std::size_t pick = n;
+      for (std::size_t i = 0; i < n; ++i)
+        if (!used[i] && (pick == n || (at - stops[i].entry).norm() < (at - stops[pick].entry).norm())) pick = i;
+      used[pick] = true, nearest.push_back(pick), at = stops[pick].exit;
+    }
+    const double found = travelFromStart(stops, order, start);
+    EXPECT_LE(found, travelFromStart(stops, given, start) + 1e-9);
+    EXPECT_LE(found, travelFromStart(stops, nearest, start) + 1e-6);
+  }
+}
+
+// Stops with nothing to gain keep their places.
+TEST(LeastTravelOrder, KeepsTheGivenOrderWhenNoneIsShorter) {
+  std::vector<TourStop> stops(4);
+  for (TourStop& s : stops) s = {Eigen::Vector3d(1, 2, 3), Eigen::Vector3d(1, 2, 3)};
+  EXPECT_EQ(leastTravelOrder(stops, std::nullopt), (std::vector<std::size_t>{0, 1, 2, 3}));
+  EXPECT_TRUE(leastTravelOrder({}, Eigen::Vector3d::Zero()).empty());
 }

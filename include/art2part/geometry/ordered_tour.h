@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -21,6 +22,7 @@ namespace art2part {
 constexpr std::size_t kOrOptRun = 3;   // the longest run of consecutive stops moved at once
 constexpr double kOrOptGainMm = 1e-3;  // a move must shorten the travel by more than this
 constexpr int kOrOptSweeps = 30;       // sweeps over every run at most
+constexpr std::size_t kExactTourStops = 12;  // leastTravelOrder: the most stops ordered exactly
 
 struct TourStop {
   Eigen::Vector3d entry = Eigen::Vector3d::Zero();  // where the stop is entered
@@ -35,5 +37,15 @@ double tourTravel(const std::vector<TourStop>& stops, const std::vector<std::siz
 // such a permutation or waits_for's size is not the stops'.
 std::vector<std::size_t> shortenedOrder(const std::vector<TourStop>& stops, std::vector<std::size_t> order,
                                         const std::vector<std::vector<std::size_t>>& waits_for);
+
+// The order of `stops` (no stop waiting for another) with the least travel from `start`, where the tool is before the
+// first stop (none: wherever the first stop is entered, as tourTravel counts). Exact for up to kExactTourStops stops
+// (Held-Karp: the shortest path through every subset ending at each stop, 2^n n^2 steps); beyond that the
+// nearest-neighbour order from `start` (or from each stop in turn, without one), shortened by or-opt as above: the
+// shortest of those. Ties go to the order given (0, 1, ...), so stops with no travel to gain keep their places.
+// Used for a setup's operations with one tool (finishing.cpp): a handful of stops, each entered and left over the
+// clearance plane.
+std::vector<std::size_t> leastTravelOrder(const std::vector<TourStop>& stops,
+                                          const std::optional<Eigen::Vector3d>& start);
 
 }  // namespace art2part

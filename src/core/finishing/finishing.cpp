@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <tuple>
 
@@ -20,6 +21,7 @@
 #include "art2part/finishing/face_assignment.h"
 #include "art2part/finishing/planar_finishing.h"
 #include "art2part/finishing/stock_after_roughing.h"
+#include "art2part/geometry/ordered_tour.h"
 #include "art2part/geometry/solid_closure.h"
 #include "art2part/roughing/shadow.h"
 #include "finishing_context.h"
@@ -280,6 +282,36 @@ void runSurfaceGroup(const Context& c, const Group& group, const std::vector<int
   out.ops.push_back(std::move(op));
 }
 
+// Each run of `ops` with one tool in the order with the least travel between them (each entered and left over the
+// clearance plane: the order of operations planned from the same stock changes no cut), from `roughing_end` (where
+// the setup's roughing leaves its last tool, and which) when that is the run's tool. Drilling and hole milling keep
+// their places and split the runs: a hole's operations follow one another in the order the hole plan gave.
+void shortenToolRuns(std::vector<FinishingOperation>& ops,
+                     const std::optional<std::pair<std::string, Vec3>>& roughing_end) {
+  auto fixed = [](const FinishingOperation& op) {
+    return op.kind == FinishingKind::Drill || op.kind == FinishingKind::Helix || op.path.empty();
+  };
+  for (std::size_t first = 0; first < ops.size();) {
+    std::size_t end = first;
+    while (end < ops.size() && ops[end].tool == ops[first].tool && !fixed(ops[end])) ++end;
+    if (end - first < 2) {
+      first = std::max(end, first + 1);
+      continue;
+    }
+    std::vector<TourStop> stops;
+    for (std::size_t i = first; i < end; ++i) stops.push_back({ops[i].path.front().tip, ops[i].path.back().tip});
+    std::optional<Vec3> start;
+    if (first > 0 && ops[first - 1].tool == ops[first].tool && !ops[first - 1].path.empty())
+      start = ops[first - 1].path.back().tip;
+    else if (first == 0 && roughing_end && roughing_end->first == ops[first].tool)
+      start = roughing_end->second;
+    std::vector<FinishingOperation> run;
+    for (std::size_t k : leastTravelOrder(stops, start)) run.push_back(std::move(ops[first + k]));
+    std::move(run.begin(), run.end(), ops.begin() + static_cast<std::ptrdiff_t>(first));
+    first = end;
+  }
+}
+
 // Each setup's operations in machining order, each tool loaded once; the plan's operations, tool changes and time.
 void orderOperations(const Context& c, std::vector<std::vector<FinishingOperation>>& per_setup, FinishingPlan& plan) {
   plan.tool_changes_per_setup.assign(per_setup.size(), 0);
@@ -297,6 +329,10 @@ void orderOperations(const Context& c, std::vector<std::vector<FinishingOperatio
       if (ta && tb && ca == 0 && ta->diameter != tb->diameter) return ta->diameter > tb->diameter;
       return first[a.tool] < first[b.tool];
     });
+    std::optional<std::pair<std::string, Vec3>> roughing_end;  // the setup's last roughing operation's tool and end
+    for (const RoughingOperation& r : c.in.roughing.operations)
+      if (r.setup == k && !r.path.empty()) roughing_end = std::make_pair(r.tool, r.path.back().tip);
+    shortenToolRuns(ops, roughing_end);
     std::string loaded;
     for (FinishingOperation& op : ops) {
       estimateTime(op, c.in.library, c.options);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <numeric>
 #include <stdexcept>
 
 namespace art2part {
@@ -102,6 +103,65 @@ void checkOrder(std::size_t stops, const std::vector<std::size_t>& order,
   }
 }
 
+// The travel of `order` from `start` (none: from its first entry).
+double travelFrom(const std::vector<TourStop>& stops, const std::vector<std::size_t>& order,
+                  const std::optional<Eigen::Vector3d>& start) {
+  double travel = tourTravel(stops, order);
+  if (start && !order.empty()) travel += (*start - stops[order.front()].entry).norm();
+  return travel;
+}
+
+// Held-Karp: best[set][last] the least travel visiting `set` (a bit per stop), ending at `last`.
+std::vector<std::size_t> exactOrder(const std::vector<TourStop>& stops, const std::optional<Eigen::Vector3d>& start) {
+  const std::size_t n = stops.size();
+  const std::size_t sets = std::size_t{1} << n;
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  std::vector<double> best(sets * n, kInf);
+  std::vector<std::size_t> came(sets * n, kNone);
+  for (std::size_t i = 0; i < n; ++i) best[(std::size_t{1} << i) * n + i] = start ? (*start - stops[i].entry).norm() : 0;
+  for (std::size_t set = 1; set < sets; ++set)
+    for (std::size_t last = 0; last < n; ++last) {
+      const double here = best[set * n + last];
+      if (!(set >> last & 1) || here == kInf) continue;
+      for (std::size_t next = 0; next < n; ++next) {
+        if (set >> next & 1) continue;
+        const std::size_t to = (set | std::size_t{1} << next) * n + next;
+        const double travel = here + (stops[last].exit - stops[next].entry).norm();
+        if (travel < best[to] - 1e-9) best[to] = travel, came[to] = last;
+      }
+    }
+  std::size_t set = sets - 1, last = 0;
+  for (std::size_t i = 1; i < n; ++i)
+    if (best[set * n + i] < best[set * n + last] - 1e-9) last = i;
+  std::vector<std::size_t> order;
+  while (last != kNone) {
+    order.push_back(last);
+    const std::size_t before = came[set * n + last];
+    set &= ~(std::size_t{1} << last);
+    last = before;
+  }
+  std::reverse(order.begin(), order.end());
+  return order;
+}
+
+// Nearest neighbour from `start`, or from stop `first` when there is none.
+std::vector<std::size_t> nearestOrder(const std::vector<TourStop>& stops, const std::optional<Eigen::Vector3d>& start,
+                                      std::size_t first) {
+  std::vector<bool> done(stops.size(), false);
+  std::vector<std::size_t> order;
+  Eigen::Vector3d at = start ? *start : stops[first].entry;
+  while (order.size() < stops.size()) {
+    std::size_t pick = kNone;
+    double least = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < stops.size(); ++i)
+      if (!done[i] && (at - stops[i].entry).norm() < least - 1e-9) least = (at - stops[i].entry).norm(), pick = i;
+    done[pick] = true;
+    order.push_back(pick);
+    at = stops[pick].exit;
+  }
+  return order;
+}
+
 }  // namespace
 
 double tourTravel(const std::vector<TourStop>& stops, const std::vector<std::size_t>& order) {
@@ -117,6 +177,42 @@ std::vector<std::size_t> shortenedOrder(const std::vector<TourStop>& stops, std:
   for (int k = 0; k < kOrOptSweeps && shortener.sweep(); ++k) {
   }
   return shortener.take();
+}
+
+std::vector<std::size_t> leastTravelOrder(const std::vector<TourStop>& stops,
+                                          const std::optional<Eigen::Vector3d>& start) {
+  std::vector<std::size_t> given(stops.size());
+  std::iota(given.begin(), given.end(), std::size_t{0});
+  if (stops.size() < 2) return given;
+  std::vector<std::size_t> best = stops.size() <= kExactTourStops ? exactOrder(stops, start) : given;
+  if (stops.size() > kExactTourStops) {
+    // With a start, or-opt runs over the start as a stop of its own that every other waits for.
+    std::vector<TourStop> with_start;
+    std::vector<std::vector<std::size_t>> waits_for(stops.size());
+    if (start) {
+      with_start.push_back({*start, *start});
+      with_start.insert(with_start.end(), stops.begin(), stops.end());
+      waits_for.assign(with_start.size(), {0});
+      waits_for[0].clear();
+    }
+    const std::size_t tries = start ? 1 : stops.size();
+    for (std::size_t first = 0; first < tries; ++first) {
+      std::vector<std::size_t> order = nearestOrder(stops, start, first);
+      if (start) {
+        for (std::size_t& i : order) ++i;
+        order.insert(order.begin(), 0);
+        order = shortenedOrder(with_start, std::move(order), waits_for);
+        order.erase(order.begin());
+        for (std::size_t& i : order) --i;
+      } else {
+        order = shortenedOrder(stops, std::move(order), waits_for);
+      }
+      if (travelFrom(stops, order, start) < travelFrom(stops, best, start) - kOrOptGainMm) best = std::move(order);
+    }
+  }
+  // The order given unless the one found is shorter (Held-Karp's ties are broken by index, not by the given order).
+  if (travelFrom(stops, best, start) < travelFrom(stops, given, start) - kOrOptGainMm) return best;
+  return given;
 }
 
 }  // namespace art2part
