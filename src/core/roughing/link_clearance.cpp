@@ -10,7 +10,11 @@ namespace art2part {
 namespace {
 
 constexpr double kAboveHolder = 1e9;  // the spindle side above the holder: as wide as the holder's widest step
-constexpr double kGridSlack = 1e-3;   // mm: a centre point lies a tool radius from its swept disc's rim, to rounding
+// mm: a centre point lies a tool radius from its swept disc's rim, to rounding and to the rim's chords
+// (offsetRegion follows the circle within kArcTolerance, inside it): a link from a corner of a centre region, with
+// 1e-3 alone, met the chords round that corner and went over the slab (featuretype's rest passes, a climb out of
+// every slot at every level).
+constexpr double kGridSlack = kArcTolerance + 1e-3;
 constexpr double kFar = 1e300;        // no stock within reach
 
 double segmentDistance(const Point2& a, const Point2& b, const Point2& p, const Point2& q) {
