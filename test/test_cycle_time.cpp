@@ -6,9 +6,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numeric>
 #include <set>
 #include <string>
 
+#include "art2part/geometry/part.h"
 #include "art2part/kinematics/machine.h"
 #include "art2part/plan/plan_figures.h"
 #include "art2part/plan/plan_json.h"
@@ -527,6 +531,65 @@ TEST_F(UselessRunsInTwoSetups, RoundsStoppedAtTheFirstSetupThatFindsMoreDecideAs
   EXPECT_DOUBLE_EQ(gated.verification.leftover_volume_mm3, whole.verification.leftover_volume_mm3);
   EXPECT_DOUBLE_EQ(gated.verification.removed_volume_mm3, whole.verification.removed_volume_mm3);
   expectOnlyTheLastSetupsRunLeftOut(dropped_before);
+}
+
+// featuretype's finishing, setup by setup: each run of one tool's milling operations after a tool change is in the
+// order with the least travel across (every order tried; the ops' clearance points compared in the plane, as they
+// stand at one height), at least one crossing between two of them stays under the clearance plane, and the
+// simulation of the whole plan finds no gouge and no collision.
+TEST(FinishingOrder, OneToolsOperationsTravelLeastAndCrossLowWithoutCollision) {
+  const Part part = loadPart(std::string(ART2PART_SHARED_PARTS) + "/featuretype.STEP");
+  const PlanResult plan = planPart(part, loadToolLibrary(kConfig + "/tools.yaml"), PlanOptions{});
+  ASSERT_TRUE(plan.verified);
+  EXPECT_EQ(plan.verification.gouges, 0);
+  EXPECT_EQ(plan.verification.collisions, 0);
+  auto flat = [](const Vec3& p) { return Eigen::Vector2d(p.x(), p.y()); };
+  int runs = 0, low = 0;
+  const std::vector<PlanOperation>& ops = plan.operations;
+  for (std::size_t i = 0; i < ops.size();) {
+    auto milling = [&](std::size_t k) { return ops[k].finishing && ops[k].kind != "drill" && ops[k].kind != "helix"; };
+    std::size_t end = i + 1;
+    while (end < ops.size() && milling(i) && milling(end) && ops[end].tool == ops[i].tool &&
+           ops[end].setup == ops[i].setup)
+      ++end;
+    const bool after_change = i == 0 || ops[i - 1].tool != ops[i].tool || ops[i - 1].setup != ops[i].setup;
+    if (end - i >= 2 && end - i <= 7 && after_change) {
+      ++runs;
+      std::vector<Eigen::Vector2d> entry, exit;
+      for (std::size_t k = i; k < end; ++k) {
+        entry.push_back(flat(plan.toolpath[ops[k].first_point].tip));
+        exit.push_back(flat(plan.toolpath[ops[k].first_point + ops[k].points - 1].tip));
+      }
+      auto travel = [&](const std::vector<std::size_t>& order) {
+        double sum = 0;
+        for (std::size_t k = 1; k < order.size(); ++k) sum += (exit[order[k - 1]] - entry[order[k]]).norm();
+        return sum;
+      };
+      std::vector<std::size_t> order(end - i);
+      std::iota(order.begin(), order.end(), std::size_t{0});
+      const double planned = travel(order);
+      double least = std::numeric_limits<double>::infinity();
+      do least = std::min(least, travel(order));
+      while (std::next_permutation(order.begin(), order.end()));
+      EXPECT_NEAR(planned, least, 1e-3) << "operations " << ops[i].index << " to " << ops[end - 1].index;
+    }
+    // Under its own clearance plane: the operation's highest point (a surface operation's is under the setup's).
+    auto highest = [&](std::size_t k) {
+      double top = -std::numeric_limits<double>::infinity();
+      for (std::size_t r = 0; r < ops[k].points; ++r)
+        top = std::max(top, plan.toolpath[ops[k].first_point + r].tip.z());
+      return top;
+    };
+    for (std::size_t k = i + 1; k < end; ++k) {
+      const CutterLocation& left = plan.toolpath[ops[k - 1].first_point + ops[k - 1].points - 1];
+      const CutterLocation& entered = plan.toolpath[ops[k].first_point];
+      if (left.axis.z() > 1 - 1e-9 && left.tip.z() < highest(k - 1) - 1 && entered.tip.z() < highest(k) - 1) ++low;
+    }
+    i = end;
+  }
+  std::printf("%d runs of one tool's operations tried every order, %d crossings between them kept low\n", runs, low);
+  EXPECT_GE(runs, 1);
+  EXPECT_GE(low, 1);
 }
 
 }  // namespace

@@ -19,6 +19,7 @@
 #include "art2part/common/parallel.h"
 #include "art2part/finishing/admissible.h"
 #include "art2part/finishing/face_assignment.h"
+#include "art2part/finishing/hole_links.h"
 #include "art2part/finishing/planar_finishing.h"
 #include "art2part/finishing/stock_after_roughing.h"
 #include "art2part/geometry/ordered_tour.h"
@@ -312,6 +313,51 @@ void shortenToolRuns(std::vector<FinishingOperation>& ops,
   }
 }
 
+// Whether `path` ends with a rapid straight up its axis to `top` (along the axis, as Vec3::dot measures it), and
+// starts with a rapid at that height straight down: how every finishing operation leaves and enters its setup's
+// clearance plane.
+bool leavesUp(const Toolpath& path, const Vec3& axis) {
+  const std::size_t n = path.size();
+  if (n < 2 || path[n - 1].move != MoveKind::Rapid) return false;
+  const Vec3 up = path[n - 1].tip - path[n - 2].tip;
+  return up.cross(axis).norm() < 1e-9 && up.dot(axis) > 0;
+}
+bool entersDown(const Toolpath& path, const Vec3& axis) {
+  return path.size() >= 2 && path[0].move == MoveKind::Rapid && path[1].move == MoveKind::Rapid &&
+         (path[1].tip - path[0].tip).cross(axis).norm() < 1e-9 && (path[0].tip - path[1].tip).dot(axis) > 0;
+}
+
+// Between two operations of one tool along the setup's own direction, the tool crosses at the lowest height the
+// stock roughing left proves clear for the whole tool (hole_links.h: finishing before either only takes stock
+// away) instead of over the clearance plane: the first's retract ends there, the second's descent starts there.
+void lowerToolRunLinks(const Context& c, int setup_index, std::vector<FinishingOperation>& ops) {
+  const Setup& setup = c.in.setups.setups[setup_index];
+  const Vec3 axis = setup.frame.z;
+  std::map<std::string, HoleLink> links;  // by tool
+  for (std::size_t i = 1; i < ops.size(); ++i) {
+    Toolpath& a = ops[i - 1].path;
+    Toolpath& b = ops[i].path;
+    if (ops[i - 1].tool != ops[i].tool || !leavesUp(a, axis) || !entersDown(b, axis)) continue;
+    if (!setupsOwnDirection(setup, a.back().axis) || !setupsOwnDirection(setup, b.front().axis)) continue;
+    const double top = a.back().tip.dot(axis);
+    if (std::abs(b.front().tip.dot(axis) - top) > 1e-6) continue;
+    const Tool* tool = c.in.library.find(ops[i].tool);
+    if (!tool) continue;
+    auto link = links.find(ops[i].tool);
+    if (link == links.end()) {
+      const SetupFrame frame = frameFor(c.in.part, setup, axis);
+      HoleLink over = linkOverStock(stockLeftAlong(c, setup_index, axis), frame, *tool, c.options.tools.holder_margin);
+      link = links.emplace(ops[i].tool, std::move(over)).first;
+    }
+    const Vec3 from = a[a.size() - 2].tip, to = b[1].tip;
+    const double lowest = std::max(from.dot(axis), to.dot(axis));
+    const double height = link->second(from, to, lowest, top);
+    if (height >= top - 1e-6) continue;
+    a.back().tip = from + axis * (height - from.dot(axis));
+    b.front().tip = to + axis * (height - to.dot(axis));
+  }
+}
+
 // Each setup's operations in machining order, each tool loaded once; the plan's operations, tool changes and time.
 void orderOperations(const Context& c, std::vector<std::vector<FinishingOperation>>& per_setup, FinishingPlan& plan) {
   plan.tool_changes_per_setup.assign(per_setup.size(), 0);
@@ -333,6 +379,7 @@ void orderOperations(const Context& c, std::vector<std::vector<FinishingOperatio
     for (const RoughingOperation& r : c.in.roughing.operations)
       if (r.setup == k && !r.path.empty()) roughing_end = std::make_pair(r.tool, r.path.back().tip);
     shortenToolRuns(ops, roughing_end);
+    lowerToolRunLinks(c, k, ops);
     std::string loaded;
     for (FinishingOperation& op : ops) {
       estimateTime(op, c.in.library, c.options);

@@ -118,7 +118,8 @@ std::vector<std::size_t> exactOrder(const std::vector<TourStop>& stops, const st
   constexpr double kInf = std::numeric_limits<double>::infinity();
   std::vector<double> best(sets * n, kInf);
   std::vector<std::size_t> came(sets * n, kNone);
-  for (std::size_t i = 0; i < n; ++i) best[(std::size_t{1} << i) * n + i] = start ? (*start - stops[i].entry).norm() : 0;
+  for (std::size_t i = 0; i < n; ++i)
+    best[(std::size_t{1} << i) * n + i] = start ? (*start - stops[i].entry).norm() : 0;
   for (std::size_t set = 1; set < sets; ++set)
     for (std::size_t last = 0; last < n; ++last) {
       const double here = best[set * n + last];
