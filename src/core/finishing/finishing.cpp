@@ -68,6 +68,11 @@ std::vector<SlabState> stockLeftAlong(const Context& c, int setup_index, const V
   return c.after_roughing.slabs(setup_index, frameFor(c.in.part, setup, direction));
 }
 
+HoleLink linkOverStockLeft(const Context& c, int setup_index, const Vec3& axis, const Tool& tool) {
+  return linkOverStock(stockLeftAlong(c, setup_index, axis), frameFor(c.in.part, c.in.setups.setups[setup_index], axis),
+                       tool, c.options.tools.holder_margin);
+}
+
 // What roughing left along a group's direction beyond the skins finishing leaves its tools (stockBeyondSkin): beyond
 // the allowance for planar finishing, beyond the surface skin for surface finishing.
 struct StockBeyond {
@@ -313,9 +318,8 @@ void shortenToolRuns(std::vector<FinishingOperation>& ops,
   }
 }
 
-// Whether `path` ends with a rapid straight up its axis to `top` (along the axis, as Vec3::dot measures it), and
-// starts with a rapid at that height straight down: how every finishing operation leaves and enters its setup's
-// clearance plane.
+// Whether `path` ends with a rapid straight up `axis`, and whether it starts with a rapid straight down it: how a
+// finishing operation leaves and enters its clearance plane.
 bool leavesUp(const Toolpath& path, const Vec3& axis) {
   const std::size_t n = path.size();
   if (n < 2 || path[n - 1].move != MoveKind::Rapid) return false;
@@ -344,11 +348,7 @@ void lowerToolRunLinks(const Context& c, int setup_index, std::vector<FinishingO
     const Tool* tool = c.in.library.find(ops[i].tool);
     if (!tool) continue;
     auto link = links.find(ops[i].tool);
-    if (link == links.end()) {
-      const SetupFrame frame = frameFor(c.in.part, setup, axis);
-      HoleLink over = linkOverStock(stockLeftAlong(c, setup_index, axis), frame, *tool, c.options.tools.holder_margin);
-      link = links.emplace(ops[i].tool, std::move(over)).first;
-    }
+    if (link == links.end()) link = links.emplace(ops[i].tool, linkOverStockLeft(c, setup_index, axis, *tool)).first;
     const Vec3 from = a[a.size() - 2].tip, to = b[1].tip;
     const double lowest = std::max(from.dot(axis), to.dot(axis));
     const double height = link->second(from, to, lowest, top);

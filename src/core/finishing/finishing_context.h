@@ -52,6 +52,10 @@ bool setupsOwnDirection(const Setup& setup, const Vec3& d);
 // else the in-process model's along it (a 5-axis plan's tilted directions).
 std::vector<SlabState> stockLeftAlong(const Context& c, int setup_index, const Vec3& direction);
 
+// The lowest crossings along `axis` in a setup over what roughing left there (linkOverStock over stockLeftAlong, the
+// holder margin kept): a drilling run's between holes, one tool's between its operations.
+HoleLink linkOverStockLeft(const Context& c, int setup_index, const Vec3& axis, const Tool& tool);
+
 // Holes (hole_runs.cpp): a spot and a drill run per setup and drill (one signature's tool load), a helix per hole,
 // added to `per_setup`; the holes' bore faces noted in `tally`. A through hole reached from its far end is made from
 // there (reversedHole), its method chosen again for that end (plan.holes and plan.hole_methods as made).

@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "art2part/common/angles.h"
-#include "art2part/finishing/hole_links.h"
 #include "art2part/geometry/travel_order.h"
 #include "finishing_context.h"
 
@@ -84,9 +83,7 @@ void makeHoles(const Context& c, const std::vector<FaceAssignment>& assignment, 
   };
   // Between the holes of a run, the lowest crossing the stock roughing left proves clear (hole_links.h).
   auto linkFor = [&](int setup, const std::vector<int>& group, const Tool& tool) {
-    const Vec3 axis = holes[group.front()].axis.normalized();
-    return linkOverStock(stockLeftAlong(c, setup, axis), frameFor(part, c.in.setups.setups[setup], axis), tool,
-                         c.options.tools.holder_margin);
+    return linkOverStockLeft(c, setup, holes[group.front()].axis.normalized(), tool);
   };
   auto drillRun = [&](int setup, const std::vector<int>& group, const Tool& tool, bool spot) {
     std::vector<Hole> list;

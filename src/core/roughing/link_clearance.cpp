@@ -11,9 +11,7 @@ namespace {
 
 constexpr double kAboveHolder = 1e9;  // the spindle side above the holder: as wide as the holder's widest step
 // mm: a centre point lies a tool radius from its swept disc's rim, to rounding and to the rim's chords
-// (offsetRegion follows the circle within kArcTolerance, inside it): a link from a corner of a centre region, with
-// 1e-3 alone, met the chords round that corner and went over the slab (featuretype's rest passes, a climb out of
-// every slot at every level).
+// (offsetRegion follows the circle within kArcTolerance, inside it).
 constexpr double kGridSlack = kArcTolerance + 1e-3;
 constexpr double kFar = 1e300;        // no stock within reach
 
